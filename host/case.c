@@ -1,0 +1,1207 @@
+/* Case files: YAML → validated amsph_case (see case.h).
+ *
+ * One schema table (`specs` below) describes every key: where it lives, its
+ * type, unit, range, default and the shapes it applies to. The same table
+ * drives parsing, validation, defaults and the Markdown key reference.
+ *
+ * Each map is read in two passes. The first collects the value node of every
+ * key and rejects unknown and duplicate keys; the second walks the schema in
+ * table order. So the order of keys in the file never matters: `dimension` is
+ * always known before any vector is read, and all materials before geometry
+ * refers to them by name. Rules that tie several keys together (max > min,
+ * unique material names, ...) run after a map's keys are loaded. */
+#include "case.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+#define CASE_ERROR 2
+#define MAX_FILE_BYTES (64u << 20) /* a case file is a few kB; refuse absurd ones */
+#define SHOWN_MAX 40               /* user text longer than this is cut in messages */
+#define PATH_LEN 96                /* key paths such as "geometry[12].open[3]" */
+#define MAX_FLOW_DEPTH 1000        /* libyaml slows down quadratically with [ { nesting */
+
+#if defined(__GNUC__)
+#define PRINTF_LIKE(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define PRINTF_LIKE(fmt, args)
+#endif
+
+/* Enum fields are filled through int pointers. */
+_Static_assert(sizeof(amsph_kernel_type) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_backend_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_shape) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
+
+/* ---- schema ------------------------------------------------------------ */
+
+typedef enum { SEC_TOP, SEC_DOMAIN, SEC_MATERIAL, SEC_GEOMETRY } section_id;
+
+/* How each section is named in the key reference. */
+static const char *const section_prefix[] = {"", "domain.", "materials[].", "geometry[]."};
+
+typedef enum {
+    VT_INT,      /* int */
+    VT_NUMBER,   /* double */
+    VT_VECTOR,   /* double[3]: `dimension` numbers, the rest 0 */
+    VT_BOOLS,    /* int[3]: `dimension` booleans, the rest 0 */
+    VT_CHOICE,   /* int: the value of one of `choices` */
+    VT_NAME,     /* char[AMSPH_NAME_LEN] */
+    VT_MATERIAL, /* int: index of the material with the given name */
+    VT_FACES,    /* unsigned: OR of the values of a list of `choices` */
+    VT_MAP,      /* a nested map with the keys of section `sub` */
+    VT_LIST      /* a list of lo..hi maps with the keys of section `sub` */
+} value_type;
+
+enum {
+    F_REQUIRED = 1u << 0,
+    F_ABOVE_LO = 1u << 1,     /* value > lo */
+    F_FROM_LO = 1u << 2,      /* value >= lo */
+    F_UP_TO_HI = 1u << 3,     /* value <= hi */
+    F_NO_DEFAULT = 1u << 4,   /* optional; absence is recorded (temperature) */
+    F_SELECTS_SHAPE = 1u << 5 /* the value decides which shape-specific keys apply */
+};
+
+typedef struct {
+    const char *name;
+    int value;
+    int dim; /* 0: any dimension; otherwise only this one */
+} choice;
+
+static const choice kernel_choices[] = {
+    {"wendland", AMSPH_KERNEL_WENDLAND, 0}, {"quintic", AMSPH_KERNEL_QUINTIC, 0}, {NULL, 0, 0}};
+static const choice backend_choices[] = {
+    {"openmp", AMSPH_BACKEND_OPENMP, 0}, {"opencl", AMSPH_BACKEND_OPENCL, 0}, {NULL, 0, 0}};
+static const choice shape_choices[] = {{"box", AMSPH_SHAPE_BOX, 0},
+                                       {"circle", AMSPH_SHAPE_CIRCLE, 2},
+                                       {"sphere", AMSPH_SHAPE_SPHERE, 3},
+                                       {"cylinder", AMSPH_SHAPE_CYLINDER, 3},
+                                       {NULL, 0, 0}};
+static const choice kind_choices[] = {{"fluid", AMSPH_KIND_FLUID, 0},
+                                      {"wall", AMSPH_KIND_WALL, 0},
+                                      {"solid", AMSPH_KIND_SOLID, 0},
+                                      {NULL, 0, 0}};
+static const choice face_choices[] = {{"-x", (int)AMSPH_FACE_BIT(0, 0), 0},
+                                      {"+x", (int)AMSPH_FACE_BIT(0, 1), 0},
+                                      {"-y", (int)AMSPH_FACE_BIT(1, 0), 0},
+                                      {"+y", (int)AMSPH_FACE_BIT(1, 1), 0},
+                                      {"-z", (int)AMSPH_FACE_BIT(2, 0), 3},
+                                      {"+z", (int)AMSPH_FACE_BIT(2, 1), 3},
+                                      {NULL, 0, 0}};
+
+#define SHAPE_BIT(s) (1u << (s))
+#define BOX_ONLY SHAPE_BIT(AMSPH_SHAPE_BOX)
+#define CYLINDER_ONLY SHAPE_BIT(AMSPH_SHAPE_CYLINDER)
+#define ROUND_SHAPES (SHAPE_BIT(AMSPH_SHAPE_CIRCLE) | SHAPE_BIT(AMSPH_SHAPE_SPHERE) | CYLINDER_ONLY)
+
+typedef struct {
+    section_id section;
+    const char *key;
+    value_type type;
+    const char *unit;      /* NULL: dimensionless */
+    unsigned flags;        /* F_* */
+    double lo, hi;         /* bounds per flags; VT_LIST: entry counts */
+    double def;            /* default of an optional number, integer or choice */
+    const choice *choices; /* VT_CHOICE, VT_FACES */
+    section_id sub;        /* VT_MAP, VT_LIST: section of the nested keys */
+    unsigned shapes;       /* geometry: shapes the key applies to; 0 = all */
+    size_t offset;         /* field in amsph_case (top, domain), amsph_material or
+                              amsph_geometry */
+    const char *rule;      /* rule across keys, checked in code; for the reference */
+    const char *doc;
+} key_spec;
+
+#define CASE(field) offsetof(amsph_case, field)
+#define MAT(field) offsetof(amsph_material, field)
+#define GEO(field) offsetof(amsph_geometry, field)
+
+/* Table order is processing order (a section's keys are read in this order)
+ * and the order of the reference. */
+/* clang-format off */
+static const key_spec specs[] = {
+    {.section = SEC_TOP, .key = "dimension", .type = VT_INT,
+     .flags = F_REQUIRED | F_FROM_LO | F_UP_TO_HI, .lo = 2, .hi = 3, .offset = CASE(dim),
+     .doc = "Number of space dimensions"},
+    {.section = SEC_TOP, .key = "domain", .type = VT_MAP, .flags = F_REQUIRED, .sub = SEC_DOMAIN,
+     .doc = "Simulation domain (an axis-aligned box)"},
+    {.section = SEC_DOMAIN, .key = "min", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .offset = CASE(domain_min), .doc = "Lower corner of the domain"},
+    {.section = SEC_DOMAIN, .key = "max", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .offset = CASE(domain_max), .rule = "each > `min`", .doc = "Upper corner of the domain"},
+    {.section = SEC_DOMAIN, .key = "periodic", .type = VT_BOOLS, .offset = CASE(periodic),
+     .doc = "Per direction: whether the domain wraps around"},
+    {.section = SEC_TOP, .key = "dx", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = CASE(dx),
+     .doc = "Initial particle spacing"},
+    {.section = SEC_TOP, .key = "h_over_dx", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
+     .lo = 1, .hi = 3, .def = 1.2, .offset = CASE(h_over_dx),
+     .doc = "Smoothing length divided by `dx`"},
+    {.section = SEC_TOP, .key = "kernel", .type = VT_CHOICE, .choices = kernel_choices,
+     .def = AMSPH_KERNEL_WENDLAND, .offset = CASE(kernel),
+     .doc = "Smoothing kernel: Wendland C2 or quintic spline"},
+    {.section = SEC_TOP, .key = "end_time", .type = VT_NUMBER, .unit = "s",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = CASE(end_time),
+     .doc = "Simulated time at which the run stops"},
+    {.section = SEC_TOP, .key = "output_interval", .type = VT_NUMBER, .unit = "s",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = CASE(output_interval),
+     .doc = "Simulated time between snapshots"},
+    {.section = SEC_TOP, .key = "backend", .type = VT_CHOICE, .choices = backend_choices,
+     .def = AMSPH_BACKEND_OPENMP, .offset = CASE(backend),
+     .doc = "Compute backend; `--backend` overrides"},
+    {.section = SEC_TOP, .key = "device", .type = VT_INT, .flags = F_FROM_LO, .lo = -1, .def = -1,
+     .offset = CASE(device), .doc = "OpenCL device index; -1: the first; `--device` overrides"},
+    {.section = SEC_TOP, .key = "gravity", .type = VT_VECTOR, .unit = "m/s²",
+     .offset = CASE(gravity), .doc = "Gravitational acceleration"},
+    {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
+     .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
+     .doc = "Materials, referred to by name from `geometry`"},
+    {.section = SEC_MATERIAL, .key = "name", .type = VT_NAME, .flags = F_REQUIRED,
+     .offset = MAT(name), .rule = "unique; at most 63 characters",
+     .doc = "Name by which geometry refers to the material"},
+    {.section = SEC_MATERIAL, .key = "density", .type = VT_NUMBER, .unit = "kg/m³",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = MAT(density),
+     .doc = "Reference density"},
+    {.section = SEC_MATERIAL, .key = "viscosity", .type = VT_NUMBER, .unit = "Pa·s",
+     .flags = F_FROM_LO, .lo = 0, .offset = MAT(viscosity), .doc = "Dynamic viscosity"},
+    {.section = SEC_MATERIAL, .key = "sound_speed", .type = VT_NUMBER, .unit = "m/s",
+     .flags = F_FROM_LO, .lo = 0, .offset = MAT(sound_speed),
+     .doc = "Artificial speed of sound; 0: not set"},
+    {.section = SEC_TOP, .key = "geometry", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
+     .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
+     .doc = "Bodies filled with particles"},
+    {.section = SEC_GEOMETRY, .key = "shape", .type = VT_CHOICE, .choices = shape_choices,
+     .flags = F_REQUIRED | F_SELECTS_SHAPE, .offset = GEO(shape),
+     .doc = "Shape of the body; decides which keys below apply"},
+    {.section = SEC_GEOMETRY, .key = "kind", .type = VT_CHOICE, .choices = kind_choices,
+     .flags = F_REQUIRED, .offset = GEO(kind), .doc = "Kind of the particles"},
+    {.section = SEC_GEOMETRY, .key = "material", .type = VT_MATERIAL, .flags = F_REQUIRED,
+     .offset = GEO(material), .rule = "name of a material",
+     .doc = "Material of the particles"},
+    {.section = SEC_GEOMETRY, .key = "min", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .shapes = BOX_ONLY, .offset = GEO(min), .doc = "Lower corner of the box"},
+    {.section = SEC_GEOMETRY, .key = "max", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .shapes = BOX_ONLY, .offset = GEO(max), .rule = "each > `min`",
+     .doc = "Upper corner of the box"},
+    {.section = SEC_GEOMETRY, .key = "center", .type = VT_VECTOR, .unit = "m",
+     .flags = F_REQUIRED, .shapes = ROUND_SHAPES, .offset = GEO(center),
+     .doc = "Centre; for a cylinder the centre of its base"},
+    {.section = SEC_GEOMETRY, .key = "axis", .type = VT_VECTOR, .flags = F_REQUIRED,
+     .shapes = CYLINDER_ONLY, .offset = GEO(axis), .rule = "nonzero; normalised on reading",
+     .doc = "Direction of the cylinder axis"},
+    {.section = SEC_GEOMETRY, .key = "radius", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .shapes = ROUND_SHAPES, .offset = GEO(radius),
+     .doc = "Radius"},
+    {.section = SEC_GEOMETRY, .key = "length", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .shapes = CYLINDER_ONLY, .offset = GEO(length),
+     .doc = "Length of the cylinder along `axis`"},
+    {.section = SEC_GEOMETRY, .key = "layers", .type = VT_INT, .flags = F_FROM_LO, .lo = 0,
+     .shapes = BOX_ONLY, .offset = GEO(layers),
+     .doc = "0: a filled box; n > 0: n layers of particles outside the box faces (a tank)"},
+    {.section = SEC_GEOMETRY, .key = "open", .type = VT_FACES, .choices = face_choices,
+     .shapes = BOX_ONLY, .offset = GEO(open_faces), .rule = "only with `layers` > 0",
+     .doc = "Faces of the tank left without wall"},
+    {.section = SEC_GEOMETRY, .key = "velocity", .type = VT_VECTOR, .unit = "m/s",
+     .offset = GEO(velocity), .doc = "Initial velocity"},
+    {.section = SEC_GEOMETRY, .key = "temperature", .type = VT_NUMBER, .unit = "K",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = GEO(temperature),
+     .doc = "Initial temperature"},
+};
+/* clang-format on */
+
+#define N_SPECS (sizeof specs / sizeof specs[0])
+
+/* ---- parser state and messages ----------------------------------------- */
+
+typedef struct {
+    const char *name; /* file name for messages */
+    char *err;
+    size_t errlen;
+    yaml_document_t *doc;
+    amsph_case *c;
+    size_t material_line[AMSPH_MAX_MATERIALS]; /* where each material's name is */
+} parser;
+
+/* One map being read: its keys found so far and the struct they fill. */
+typedef struct {
+    section_id section;
+    char label[PATH_LEN];  /* "top level", "domain", "materials[2]", ... */
+    char prefix[PATH_LEN]; /* "", "domain.", "materials[2].", ...: key paths */
+    size_t index;          /* list entry number */
+    void *target;
+    const yaml_node_t *map;
+    unsigned shape; /* geometry: bit of the shape; otherwise all bits */
+    const char *shape_name;
+    const yaml_node_t *key[N_SPECS];   /* key node per spec, NULL if absent */
+    const yaml_node_t *value[N_SPECS]; /* its value node */
+} scope;
+
+/* A short text for a message (a quoted value, a range, a list of names). */
+typedef struct {
+    char s[128];
+} shown;
+
+static size_t line_of(const yaml_node_t *n)
+{
+    return n->start_mark.line + 1;
+}
+
+/* Replaces control characters, so that a message stays one line. */
+static void make_one_line(char *s)
+{
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            *s = '?';
+}
+
+static int fail(const parser *p, size_t line, const char *fmt, ...) PRINTF_LIKE(3, 4);
+
+/* Writes "name:line: message" into the caller's buffer; returns CASE_ERROR. */
+static int fail(const parser *p, size_t line, const char *fmt, ...)
+{
+    if (!p->err || p->errlen == 0)
+        return CASE_ERROR;
+    int n = snprintf(p->err, p->errlen, "%s:%zu: ", p->name, line);
+    if (n >= 0 && (size_t)n < p->errlen) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    make_one_line(p->err);
+    return CASE_ERROR;
+}
+
+static void set_path(char *out, const char *fmt, ...) PRINTF_LIKE(2, 3);
+
+/* Formats a key path into a PATH_LEN buffer; a longer one is cut. */
+static void set_path(char *out, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(out, PATH_LEN, fmt, ap);
+    va_end(ap);
+}
+
+/* User text, cut to SHOWN_MAX bytes (at a UTF-8 character boundary). */
+static shown clip(const char *s, size_t len, int quote)
+{
+    shown out;
+    size_t n = len;
+    if (n > SHOWN_MAX) {
+        n = SHOWN_MAX;
+        while (n > 0 && ((unsigned char)s[n] & 0xC0) == 0x80)
+            n--;
+    }
+    const char *q = quote ? "'" : "";
+    snprintf(out.s, sizeof out.s, "%s%.*s%s%s", q, (int)n, s, n < len ? "..." : "", q);
+    return out;
+}
+
+static const char *scalar_text(const yaml_node_t *n)
+{
+    return (const char *)n->data.scalar.value;
+}
+
+/* What a node is, for "got ...": 'text', a list, a map or an empty value. */
+static shown describe(const yaml_node_t *n)
+{
+    shown out;
+    if (n->type == YAML_SEQUENCE_NODE)
+        snprintf(out.s, sizeof out.s, "a list");
+    else if (n->type == YAML_MAPPING_NODE)
+        snprintf(out.s, sizeof out.s, "a map");
+    else if (n->data.scalar.length == 0)
+        snprintf(out.s, sizeof out.s, "an empty value");
+    else
+        return clip(scalar_text(n), n->data.scalar.length, 1);
+    return out;
+}
+
+static int is_scalar(const yaml_node_t *n, const char *s)
+{
+    return n->type == YAML_SCALAR_NODE && n->data.scalar.length == strlen(s) &&
+           memcmp(n->data.scalar.value, s, n->data.scalar.length) == 0;
+}
+
+static size_t list_length(const yaml_node_t *n)
+{
+    return (size_t)(n->data.sequence.items.top - n->data.sequence.items.start);
+}
+
+static const yaml_node_t *list_item(const parser *p, const yaml_node_t *n, size_t i)
+{
+    return yaml_document_get_node(p->doc, n->data.sequence.items.start[i]);
+}
+
+/* ---- scalars ------------------------------------------------------------ */
+
+typedef enum { NUM_OK, NUM_BAD, NUM_HUGE } number_status;
+
+/* A whole scalar as a finite decimal number: 1, -2.5, 1e-3. Words such as
+ * inf, nan or hex are not numbers. */
+static number_status parse_number(const yaml_node_t *n, double *out)
+{
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.length == 0)
+        return NUM_BAD;
+    const char *s = scalar_text(n);
+    size_t len = n->data.scalar.length;
+    if (strspn(s, "0123456789+-.eE") != len)
+        return NUM_BAD;
+    char *end;
+    double v = strtod(s, &end);
+    if (end != s + len)
+        return NUM_BAD;
+    if (!isfinite(v))
+        return NUM_HUGE;
+    *out = v;
+    return NUM_OK;
+}
+
+/* A whole scalar as a decimal integer that fits an int. */
+static number_status parse_int(const yaml_node_t *n, int *out)
+{
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.length == 0)
+        return NUM_BAD;
+    const char *s = scalar_text(n);
+    size_t len = n->data.scalar.length;
+    if (strspn(s, "0123456789+-") != len)
+        return NUM_BAD;
+    char *end;
+    errno = 0;
+    long long v = strtoll(s, &end, 10);
+    if (end != s + len)
+        return NUM_BAD;
+    if (errno == ERANGE || v < INT_MIN || v > INT_MAX)
+        return NUM_HUGE;
+    *out = (int)v;
+    return NUM_OK;
+}
+
+/* The bounds of a number as text: "> 0", ">= 0", "in [1, 3]", "2 or 3". */
+static shown range_text(const key_spec *k)
+{
+    shown out = {{0}};
+    if ((k->flags & F_FROM_LO) && (k->flags & F_UP_TO_HI)) {
+        const char *fmt = (k->type == VT_INT && k->hi - k->lo == 1) ? "%g or %g" : "in [%g, %g]";
+        snprintf(out.s, sizeof out.s, fmt, k->lo, k->hi);
+    } else if (k->flags & F_ABOVE_LO)
+        snprintf(out.s, sizeof out.s, "> %g", k->lo);
+    else if (k->flags & F_FROM_LO)
+        snprintf(out.s, sizeof out.s, ">= %g", k->lo);
+    return out;
+}
+
+static int within_bounds(const key_spec *k, double v)
+{
+    if ((k->flags & F_ABOVE_LO) && !(v > k->lo))
+        return 0;
+    if ((k->flags & F_FROM_LO) && !(v >= k->lo))
+        return 0;
+    return !((k->flags & F_UP_TO_HI) && !(v <= k->hi));
+}
+
+static shown choice_list(const choice *choices)
+{
+    shown out = {{0}};
+    size_t used = 0;
+    for (const choice *c = choices; c->name && used < sizeof out.s; c++) {
+        int n =
+            snprintf(out.s + used, sizeof out.s - used, "%s%s", c == choices ? "" : ", ", c->name);
+        used += n > 0 ? (size_t)n : 0;
+    }
+    return out;
+}
+
+/* ---- loaders: one per value type ---------------------------------------- */
+
+/* A key's value being loaded. */
+typedef struct {
+    scope *sc;
+    const key_spec *spec;
+    const yaml_node_t *key;
+    const yaml_node_t *node; /* the value */
+    char path[PATH_LEN];     /* "geometry[2].radius", for messages */
+    void *dst;               /* the field to fill */
+} slot;
+
+static int load_scope(parser *p, scope *sc);
+
+/* Where a message about a whole value points: at a scalar itself, at the key
+ * of a list or map (their nodes start at their first entry). */
+static size_t value_line(const slot *s)
+{
+    return line_of(s->node->type == YAML_SCALAR_NODE ? s->node : s->key);
+}
+
+/* A number without bounds: a vector component, or a number checked later. */
+static int read_number(parser *p, const yaml_node_t *n, size_t line, const char *path, double *out)
+{
+    number_status st = parse_number(n, out);
+    if (st == NUM_BAD)
+        return fail(p, line, "'%s' must be a number, got %s", path, describe(n).s);
+    if (st == NUM_HUGE)
+        return fail(p, line, "'%s' is out of range, got %s", path, describe(n).s);
+    return 0;
+}
+
+static int out_of_bounds(parser *p, const slot *s)
+{
+    const yaml_node_t *n = s->node;
+    return fail(p, value_line(s), "'%s' must be %s, got %s", s->path, range_text(s->spec).s,
+                clip(scalar_text(n), n->data.scalar.length, 0).s);
+}
+
+static int load_number(parser *p, const slot *s)
+{
+    double v;
+    if (read_number(p, s->node, value_line(s), s->path, &v))
+        return CASE_ERROR;
+    if (!within_bounds(s->spec, v))
+        return out_of_bounds(p, s);
+    *(double *)s->dst = v;
+    return 0;
+}
+
+static int load_int(parser *p, const slot *s)
+{
+    int v;
+    number_status st = parse_int(s->node, &v);
+    if (st == NUM_BAD)
+        return fail(p, value_line(s), "'%s' must be an integer, got %s", s->path,
+                    describe(s->node).s);
+    if (st == NUM_HUGE)
+        return fail(p, value_line(s), "'%s' is out of range, got %s", s->path, describe(s->node).s);
+    if (!within_bounds(s->spec, v))
+        return out_of_bounds(p, s);
+    *(int *)s->dst = v;
+    return 0;
+}
+
+/* A list of exactly `dimension` items; `what` names them ("numbers"). */
+static int check_dim_list(parser *p, const slot *s, const char *what)
+{
+    int dim = p->c->dim;
+    const yaml_node_t *n = s->node;
+    if (n->type != YAML_SEQUENCE_NODE)
+        return fail(p, value_line(s), "'%s' must be a list of %d %s, got %s", s->path, dim, what,
+                    describe(n).s);
+    if (list_length(n) != (size_t)dim)
+        return fail(p, value_line(s), "'%s' must have %d %s (dimension %d), got %zu", s->path, dim,
+                    what, dim, list_length(n));
+    return 0;
+}
+
+static int load_vector(parser *p, const slot *s)
+{
+    if (check_dim_list(p, s, "numbers"))
+        return CASE_ERROR;
+    double *v = s->dst;
+    for (size_t i = 0; i < list_length(s->node); i++) {
+        char path[PATH_LEN];
+        set_path(path, "%s[%zu]", s->path, i);
+        const yaml_node_t *item = list_item(p, s->node, i);
+        if (read_number(p, item, line_of(item), path, &v[i]))
+            return CASE_ERROR;
+    }
+    return 0;
+}
+
+static int load_bools(parser *p, const slot *s)
+{
+    if (check_dim_list(p, s, "booleans"))
+        return CASE_ERROR;
+    int *v = s->dst;
+    for (size_t i = 0; i < list_length(s->node); i++) {
+        const yaml_node_t *item = list_item(p, s->node, i);
+        if (!is_scalar(item, "true") && !is_scalar(item, "false"))
+            return fail(p, line_of(item), "'%s[%zu]' must be true or false, got %s", s->path, i,
+                        describe(item).s);
+        v[i] = is_scalar(item, "true");
+    }
+    return 0;
+}
+
+/* One of `choices`, and one that exists in this dimension. */
+static int read_choice(parser *p, const choice *choices, const yaml_node_t *n, size_t line,
+                       const char *path, const choice **out)
+{
+    const choice *c = choices;
+    while (c->name && !is_scalar(n, c->name))
+        c++;
+    if (!c->name)
+        return fail(p, line, "'%s' must be one of %s; got %s", path, choice_list(choices).s,
+                    describe(n).s);
+    if (c->dim && c->dim != p->c->dim)
+        return fail(p, line, "'%s': '%s' exists only in %dD, but dimension is %d", path, c->name,
+                    c->dim, p->c->dim);
+    *out = c;
+    return 0;
+}
+
+static int load_choice(parser *p, const slot *s)
+{
+    const choice *c;
+    if (read_choice(p, s->spec->choices, s->node, value_line(s), s->path, &c))
+        return CASE_ERROR;
+    *(int *)s->dst = c->value;
+    if (s->spec->flags & F_SELECTS_SHAPE) {
+        s->sc->shape = SHAPE_BIT(c->value);
+        s->sc->shape_name = c->name;
+    }
+    return 0;
+}
+
+static int load_faces(parser *p, const slot *s)
+{
+    const yaml_node_t *n = s->node;
+    if (n->type != YAML_SEQUENCE_NODE)
+        return fail(p, value_line(s), "'%s' must be a list of faces (%s), got %s", s->path,
+                    choice_list(s->spec->choices).s, describe(n).s);
+    unsigned bits = 0;
+    for (size_t i = 0; i < list_length(n); i++) {
+        const yaml_node_t *item = list_item(p, n, i);
+        char path[PATH_LEN];
+        const choice *c;
+        set_path(path, "%s[%zu]", s->path, i);
+        if (read_choice(p, s->spec->choices, item, line_of(item), path, &c))
+            return CASE_ERROR;
+        if (bits & (unsigned)c->value)
+            return fail(p, line_of(item), "'%s': face '%s' is listed twice", path, c->name);
+        bits |= (unsigned)c->value;
+    }
+    *(unsigned *)s->dst = bits;
+    return 0;
+}
+
+static int load_name(parser *p, const slot *s)
+{
+    const yaml_node_t *n = s->node;
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.length == 0)
+        return fail(p, value_line(s), "'%s' must be a non-empty name, got %s", s->path,
+                    describe(n).s);
+    size_t len = n->data.scalar.length;
+    if (len >= AMSPH_NAME_LEN)
+        return fail(p, value_line(s), "'%s' is too long (%zu characters, at most %d): %s", s->path,
+                    len, AMSPH_NAME_LEN - 1, describe(n).s);
+    for (size_t i = 0; i < len; i++)
+        if ((unsigned char)n->data.scalar.value[i] < 0x20 || n->data.scalar.value[i] == 0x7f)
+            return fail(p, value_line(s), "'%s' must not contain control characters", s->path);
+    memcpy(s->dst, n->data.scalar.value, len);
+    ((char *)s->dst)[len] = '\0';
+    return 0;
+}
+
+/* "water, air": the names of the materials read so far. */
+static void material_names(const amsph_case *c, char *out, size_t size)
+{
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; i < c->n_materials && used < size; i++) {
+        int n = snprintf(out + used, size - used, "%s%s", i ? ", " : "", c->materials[i].name);
+        used += n > 0 ? (size_t)n : 0;
+    }
+}
+
+static int load_material_ref(parser *p, const slot *s)
+{
+    const yaml_node_t *n = s->node;
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.length == 0)
+        return fail(p, value_line(s), "'%s' must be a material name, got %s", s->path,
+                    describe(n).s);
+    for (int i = 0; i < p->c->n_materials; i++) {
+        if (is_scalar(n, p->c->materials[i].name)) {
+            *(int *)s->dst = i;
+            return 0;
+        }
+    }
+    char known[AMSPH_MAX_MATERIALS * (AMSPH_NAME_LEN + 2)];
+    material_names(p->c, known, sizeof known);
+    return fail(p, value_line(s), "unknown material %s in '%s'; known materials: %s", describe(n).s,
+                s->path, known);
+}
+
+/* A scope for a nested map or list entry, labelled `label`. */
+static void init_scope(scope *sc, section_id section, const char *label, void *target,
+                       const yaml_node_t *map)
+{
+    memset(sc, 0, sizeof *sc);
+    sc->section = section;
+    set_path(sc->label, "%s", label);
+    set_path(sc->prefix, "%s.", label);
+    sc->target = target;
+    sc->map = map;
+    sc->shape = ~0u;
+}
+
+static int load_map(parser *p, const slot *s)
+{
+    if (s->node->type != YAML_MAPPING_NODE)
+        return fail(p, value_line(s), "'%s' must be a map, got %s", s->path, describe(s->node).s);
+    scope sub;
+    init_scope(&sub, s->spec->sub, s->path, s->sc->target, s->node);
+    return load_scope(p, &sub);
+}
+
+/* Entry i of a list section; counts it in the case. */
+static void *list_entry(amsph_case *c, section_id section, size_t i)
+{
+    if (section == SEC_MATERIAL) {
+        c->n_materials = (int)i + 1;
+        return &c->materials[i];
+    }
+    c->n_geometry = (int)i + 1;
+    return &c->geometry[i];
+}
+
+static int load_list(parser *p, const slot *s)
+{
+    const yaml_node_t *n = s->node;
+    if (n->type != YAML_SEQUENCE_NODE)
+        return fail(p, value_line(s), "'%s' must be a list of maps, got %s", s->path,
+                    describe(n).s);
+    size_t count = list_length(n);
+    if (count < (size_t)s->spec->lo)
+        return fail(p, value_line(s), "'%s' must have at least %g %s", s->path, s->spec->lo,
+                    s->spec->lo == 1 ? "entry" : "entries");
+    if (count > (size_t)s->spec->hi)
+        return fail(p, value_line(s), "'%s' has %zu entries; at most %g are allowed", s->path,
+                    count, s->spec->hi);
+    for (size_t i = 0; i < count; i++) {
+        const yaml_node_t *item = list_item(p, n, i);
+        char label[PATH_LEN];
+        set_path(label, "%s[%zu]", s->path, i);
+        if (item->type != YAML_MAPPING_NODE)
+            return fail(p, line_of(item), "'%s' must be a map, got %s", label, describe(item).s);
+        scope sub;
+        init_scope(&sub, s->spec->sub, label, list_entry(p->c, s->spec->sub, i), item);
+        sub.index = i;
+        if (load_scope(p, &sub))
+            return CASE_ERROR;
+    }
+    return 0;
+}
+
+typedef int (*loader)(parser *p, const slot *s);
+
+static const loader loaders[] = {
+    [VT_INT] = load_int,
+    [VT_NUMBER] = load_number,
+    [VT_VECTOR] = load_vector,
+    [VT_BOOLS] = load_bools,
+    [VT_CHOICE] = load_choice,
+    [VT_NAME] = load_name,
+    [VT_MATERIAL] = load_material_ref,
+    [VT_FACES] = load_faces,
+    [VT_MAP] = load_map,
+    [VT_LIST] = load_list,
+};
+
+/* ---- maps: collecting keys, defaults, rules across keys ------------------ */
+
+static int find_spec(section_id section, const yaml_node_t *key)
+{
+    for (size_t i = 0; i < N_SPECS; i++)
+        if (specs[i].section == section && is_scalar(key, specs[i].key))
+            return (int)i;
+    return -1;
+}
+
+/* Edit distance between a (any length) and b (short), capped: returns
+ * limit + 1 when it is larger than limit. */
+static size_t edit_distance(const char *a, size_t la, const char *b, size_t limit)
+{
+    size_t lb = strlen(b), row[32];
+    if (lb >= sizeof row / sizeof row[0] || (la > lb ? la - lb : lb - la) > limit)
+        return limit + 1;
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j];
+            size_t best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best)
+                best = up + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb] > limit ? limit + 1 : row[lb];
+}
+
+/* The key of this section closest to `key`, if it is a likely typo. */
+static const char *suggest_key(section_id section, const yaml_node_t *key)
+{
+    const char *best = NULL;
+    size_t best_distance = SIZE_MAX;
+    for (size_t i = 0; i < N_SPECS; i++) {
+        if (specs[i].section != section)
+            continue;
+        size_t limit = strlen(specs[i].key) < 5 ? 1 : 2;
+        size_t d = edit_distance(scalar_text(key), key->data.scalar.length, specs[i].key, limit);
+        if (d <= limit && d < best_distance) {
+            best = specs[i].key;
+            best_distance = d;
+        }
+    }
+    return best;
+}
+
+static int unknown_key(parser *p, const scope *sc, const yaml_node_t *key)
+{
+    const char *hint = suggest_key(sc->section, key);
+    shown name = clip(scalar_text(key), key->data.scalar.length, 1);
+    if (hint)
+        return fail(p, line_of(key), "unknown key %s in %s; did you mean '%s'?", name.s, sc->label,
+                    hint);
+    char allowed[256] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < N_SPECS && used < sizeof allowed; i++) {
+        if (specs[i].section != sc->section)
+            continue;
+        int n =
+            snprintf(allowed + used, sizeof allowed - used, "%s%s", used ? ", " : "", specs[i].key);
+        used += n > 0 ? (size_t)n : 0;
+    }
+    return fail(p, line_of(key), "unknown key %s in %s (allowed: %s)", name.s, sc->label, allowed);
+}
+
+/* First pass: the value node of each key, by spec index. */
+static int collect_keys(parser *p, scope *sc)
+{
+    const yaml_node_t *map = sc->map;
+    for (const yaml_node_pair_t *pair = map->data.mapping.pairs.start;
+         pair < map->data.mapping.pairs.top; pair++) {
+        const yaml_node_t *key = yaml_document_get_node(p->doc, pair->key);
+        if (key->type != YAML_SCALAR_NODE)
+            return fail(p, line_of(key), "keys in %s must be names, got %s", sc->label,
+                        describe(key).s);
+        int i = find_spec(sc->section, key);
+        if (i < 0)
+            return unknown_key(p, sc, key);
+        if (sc->key[i])
+            return fail(p, line_of(key), "duplicate key '%s' in %s (first on line %zu)",
+                        specs[i].key, sc->label, line_of(sc->key[i]));
+        sc->key[i] = key;
+        sc->value[i] = yaml_document_get_node(p->doc, pair->value);
+    }
+    return 0;
+}
+
+static int apply_default(parser *p, const scope *sc, const key_spec *k, void *dst)
+{
+    if (k->flags & F_REQUIRED) {
+        if (k->shapes)
+            return fail(p, line_of(sc->map), "missing required key '%s' in %s (shape '%s')", k->key,
+                        sc->label, sc->shape_name);
+        return fail(p, line_of(sc->map), "missing required key '%s' in %s", k->key, sc->label);
+    }
+    switch (k->type) {
+    case VT_NUMBER:
+        *(double *)dst = (k->flags & F_NO_DEFAULT) ? 0 : k->def;
+        break;
+    case VT_INT:
+    case VT_CHOICE:
+        *(int *)dst = (int)k->def;
+        break;
+    case VT_VECTOR:
+        memset(dst, 0, 3 * sizeof(double));
+        break;
+    case VT_BOOLS:
+        memset(dst, 0, 3 * sizeof(int));
+        break;
+    case VT_FACES:
+        *(unsigned *)dst = 0;
+        break;
+    case VT_NAME:
+    case VT_MATERIAL:
+    case VT_MAP:
+    case VT_LIST:
+        break; /* always required */
+    }
+    return 0;
+}
+
+/* Second pass for one key: its value, or its default. */
+static int load_key(parser *p, scope *sc, size_t i)
+{
+    const key_spec *k = &specs[i];
+    slot s = {.sc = sc, .spec = k, .key = sc->key[i], .node = sc->value[i]};
+    set_path(s.path, "%s%s", sc->prefix, k->key);
+    s.dst = (char *)sc->target + k->offset;
+    if (k->shapes && !(k->shapes & sc->shape)) {
+        if (sc->key[i])
+            return fail(p, line_of(sc->key[i]), "'%s' does not apply to shape '%s'", s.path,
+                        sc->shape_name);
+        return 0;
+    }
+    if (!s.node)
+        return apply_default(p, sc, k, s.dst);
+    return loaders[k->type](p, &s);
+}
+
+static const yaml_node_t *found(const scope *sc, const char *key)
+{
+    for (size_t i = 0; i < N_SPECS; i++)
+        if (specs[i].section == sc->section && strcmp(specs[i].key, key) == 0)
+            return sc->value[i];
+    return NULL;
+}
+
+/* max > min in every component (domain, box). */
+static int check_corners(parser *p, const scope *sc, const double lo[3], const double hi[3])
+{
+    const yaml_node_t *min = found(sc, "min"), *max = found(sc, "max");
+    for (int d = 0; d < p->c->dim; d++) {
+        if (hi[d] > lo[d])
+            continue;
+        const yaml_node_t *a = list_item(p, max, (size_t)d), *b = list_item(p, min, (size_t)d);
+        return fail(p, line_of(a), "'%smax[%d]' (%s) must be > '%smin[%d]' (%s)", sc->prefix, d,
+                    clip(scalar_text(a), a->data.scalar.length, 0).s, sc->prefix, d,
+                    clip(scalar_text(b), b->data.scalar.length, 0).s);
+    }
+    return 0;
+}
+
+static int finish_material(parser *p, const scope *sc)
+{
+    const amsph_material *m = sc->target;
+    const yaml_node_t *name = found(sc, "name");
+    for (size_t i = 0; i < sc->index; i++)
+        if (strcmp(p->c->materials[i].name, m->name) == 0)
+            return fail(p, line_of(name), "duplicate material name '%s' (first on line %zu)",
+                        m->name, p->material_line[i]);
+    p->material_line[sc->index] = line_of(name);
+    return 0;
+}
+
+/* Scales the cylinder axis to unit length (without overflow for huge input). */
+static int normalise_axis(parser *p, const scope *sc, double axis[3])
+{
+    double largest = fmax(fabs(axis[0]), fmax(fabs(axis[1]), fabs(axis[2])));
+    if (largest == 0)
+        return fail(p, line_of(found(sc, "axis")), "'%saxis' must not be zero", sc->prefix);
+    double norm = 0;
+    for (int d = 0; d < 3; d++) {
+        axis[d] /= largest;
+        norm += axis[d] * axis[d];
+    }
+    norm = sqrt(norm);
+    for (int d = 0; d < 3; d++)
+        axis[d] /= norm;
+    return 0;
+}
+
+static int finish_geometry(parser *p, const scope *sc)
+{
+    amsph_geometry *g = sc->target;
+    g->line = (int)line_of(sc->map);
+    g->has_temperature = found(sc, "temperature") != NULL;
+    if (g->shape == AMSPH_SHAPE_BOX) {
+        const yaml_node_t *open = found(sc, "open");
+        if (open && g->layers == 0)
+            return fail(p, line_of(open), "'%sopen' needs 'layers' > 0 (open faces of a wall)",
+                        sc->prefix);
+        return check_corners(p, sc, g->min, g->max);
+    }
+    if (g->shape == AMSPH_SHAPE_CYLINDER)
+        return normalise_axis(p, sc, g->axis);
+    return 0;
+}
+
+static int finish_scope(parser *p, const scope *sc)
+{
+    switch (sc->section) {
+    case SEC_DOMAIN:
+        return check_corners(p, sc, p->c->domain_min, p->c->domain_max);
+    case SEC_MATERIAL:
+        return finish_material(p, sc);
+    case SEC_GEOMETRY:
+        return finish_geometry(p, sc);
+    case SEC_TOP:
+        break;
+    }
+    return 0;
+}
+
+static int load_scope(parser *p, scope *sc)
+{
+    if (collect_keys(p, sc))
+        return CASE_ERROR;
+    for (size_t i = 0; i < N_SPECS; i++)
+        if (specs[i].section == sc->section && load_key(p, sc, i))
+            return CASE_ERROR;
+    return finish_scope(p, sc);
+}
+
+/* ---- documents ---------------------------------------------------------- */
+
+static size_t line_at_offset(const char *text, size_t len, size_t offset)
+{
+    size_t line = 1;
+    for (size_t i = 0; i < offset && i < len; i++)
+        line += text[i] == '\n';
+    return line;
+}
+
+static int yaml_error(const parser *p, const yaml_parser_t *yp, const char *text, size_t len)
+{
+    const char *problem = yp->problem ? yp->problem : "unknown problem";
+    switch (yp->error) {
+    case YAML_MEMORY_ERROR:
+        return fail(p, 1, "out of memory while reading YAML");
+    case YAML_READER_ERROR:
+        return fail(p, line_at_offset(text, len, yp->problem_offset), "unreadable text: %s",
+                    problem);
+    default:
+        break;
+    }
+    if (yp->context)
+        return fail(p, yp->problem_mark.line + 1, "YAML syntax error: %s (%s on line %zu)", problem,
+                    yp->context, yp->context_mark.line + 1);
+    return fail(p, yp->problem_mark.line + 1, "YAML syntax error: %s", problem);
+}
+
+/* A case file holds exactly one document. */
+static int check_no_second_document(const parser *p, yaml_parser_t *yp, const char *text,
+                                    size_t len)
+{
+    yaml_document_t next;
+    if (!yaml_parser_load(yp, &next))
+        return yaml_error(p, yp, text, len);
+    int more = yaml_document_get_root_node(&next) != NULL;
+    size_t line = next.start_mark.line + 1;
+    yaml_document_delete(&next);
+    if (more)
+        return fail(p, line, "a second YAML document starts here; a case file holds exactly one");
+    return 0;
+}
+
+static int load_document(parser *p)
+{
+    const yaml_node_t *root = yaml_document_get_root_node(p->doc);
+    if (!root)
+        return fail(p, 1, "the case file is empty; expected keys such as 'dimension'");
+    if (root->type != YAML_MAPPING_NODE)
+        return fail(p, line_of(root), "a case file must be a map of keys, got %s",
+                    describe(root).s);
+    scope top;
+    init_scope(&top, SEC_TOP, "top level", p->c, root);
+    top.prefix[0] = '\0';
+    return load_scope(p, &top);
+}
+
+/* The line where [ and { nest deeper than MAX_FLOW_DEPTH, or 0. Brackets in
+ * quotes and comments count too; real case files never pile those up. */
+static size_t too_deep_line(const char *text, size_t len)
+{
+    size_t depth = 0, line = 1;
+    for (size_t i = 0; i < len; i++) {
+        if (text[i] == '\n')
+            line++;
+        else if ((text[i] == '[' || text[i] == '{') && ++depth > MAX_FLOW_DEPTH)
+            return line;
+        else if ((text[i] == ']' || text[i] == '}') && depth > 0)
+            depth--;
+    }
+    return 0;
+}
+
+int amsph_case_parse(const char *text, size_t len, const char *name, amsph_case *c, char *err,
+                     size_t errlen)
+{
+    parser p = {.name = name ? name : "<string>", .err = err, .errlen = errlen, .c = c};
+    if (err && errlen)
+        err[0] = '\0';
+    if (!text)
+        len = 0;
+    memset(c, 0, sizeof *c);
+    snprintf(c->path, sizeof c->path, "%s", p.name);
+    size_t deep = too_deep_line(text, len);
+    if (deep)
+        return fail(&p, deep, "lists or maps nested more than %d levels deep", MAX_FLOW_DEPTH);
+
+    yaml_parser_t yp;
+    if (!yaml_parser_initialize(&yp))
+        return fail(&p, 1, "out of memory while reading YAML");
+    yaml_parser_set_input_string(&yp, (const unsigned char *)(text ? text : ""), len);
+    yaml_document_t doc;
+    int rc;
+    if (!yaml_parser_load(&yp, &doc)) {
+        rc = yaml_error(&p, &yp, text, len);
+    } else {
+        p.doc = &doc;
+        rc = check_no_second_document(&p, &yp, text, len);
+        if (rc == 0)
+            rc = load_document(&p);
+        yaml_document_delete(&doc);
+    }
+    yaml_parser_delete(&yp);
+    return rc;
+}
+
+/* Reads a whole file; on failure returns NULL with errno set (EFBIG: too large). */
+static char *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = NULL;
+    size_t used = 0, size = 0;
+    int failed = 0;
+    for (;;) {
+        if (used == size) {
+            size_t grown_size = size ? 2 * size : 4096;
+            char *grown = grown_size <= MAX_FILE_BYTES ? realloc(text, grown_size) : NULL;
+            if (!grown) {
+                errno = grown_size <= MAX_FILE_BYTES ? ENOMEM : EFBIG;
+                failed = 1;
+                break;
+            }
+            text = grown;
+            size = grown_size;
+        }
+        size_t got = fread(text + used, 1, size - used, f);
+        used += got;
+        if (got == 0) {
+            failed = ferror(f);
+            break;
+        }
+    }
+    int saved = errno;
+    fclose(f);
+    if (failed) {
+        free(text);
+        errno = saved;
+        return NULL;
+    }
+    *len = used;
+    return text;
+}
+
+int amsph_case_load(const char *path, amsph_case *c, char *err, size_t errlen)
+{
+    size_t len = 0;
+    errno = 0;
+    char *text = read_file(path, &len);
+    if (!text) {
+        if (err && errlen)
+            snprintf(err, errlen, "%s: cannot read case file: %s", path,
+                     errno ? strerror(errno) : "unknown error");
+        return CASE_ERROR;
+    }
+    int rc = amsph_case_parse(text, len, path, c, err, errlen);
+    free(text);
+    return rc;
+}
+
+/* ---- key reference ------------------------------------------------------ */
+
+static const char *type_name(value_type t)
+{
+    static const char *const names[] = {
+        [VT_INT] = "integer",
+        [VT_NUMBER] = "number",
+        [VT_VECTOR] = "list of *dimension* numbers",
+        [VT_BOOLS] = "list of *dimension* booleans",
+        [VT_CHOICE] = "string",
+        [VT_NAME] = "string",
+        [VT_MATERIAL] = "string",
+        [VT_FACES] = "list of face names",
+        [VT_MAP] = "map",
+        [VT_LIST] = "list of maps",
+    };
+    return names[t];
+}
+
+static const char *choice_name(const choice *choices, int value)
+{
+    while (choices->name && choices->value != value)
+        choices++;
+    return choices->name;
+}
+
+static shown default_text(const key_spec *k)
+{
+    shown out;
+    if (k->flags & F_REQUIRED)
+        snprintf(out.s, sizeof out.s, "required");
+    else if (k->flags & F_NO_DEFAULT)
+        snprintf(out.s, sizeof out.s, "not set");
+    else if (k->type == VT_VECTOR)
+        snprintf(out.s, sizeof out.s, "0");
+    else if (k->type == VT_BOOLS)
+        snprintf(out.s, sizeof out.s, "false");
+    else if (k->type == VT_FACES)
+        snprintf(out.s, sizeof out.s, "none");
+    else if (k->type == VT_CHOICE)
+        snprintf(out.s, sizeof out.s, "`%s`", choice_name(k->choices, (int)k->def));
+    else
+        snprintf(out.s, sizeof out.s, "%g", k->def);
+    return out;
+}
+
+/* `a`, `b (3D)`, ...: the choices whose value is in mask (0: all of them). */
+static void print_names(FILE *f, const choice *choices, unsigned mask)
+{
+    int first = 1;
+    for (const choice *c = choices; c->name; c++) {
+        if (mask && !(mask & SHAPE_BIT(c->value)))
+            continue;
+        fprintf(f, "%s`%s`", first ? "" : ", ", c->name);
+        if (c->dim)
+            fprintf(f, " (%dD)", c->dim);
+        first = 0;
+    }
+}
+
+/* The "allowed" cell: shapes, range, choices, counts and rules, with "; ". */
+static void print_allowed(FILE *f, const key_spec *k)
+{
+    const char *sep = "";
+    if (k->shapes) {
+        fprintf(f, "only for ");
+        print_names(f, shape_choices, k->shapes);
+        sep = "; ";
+    }
+    shown range = range_text(k);
+    if (range.s[0]) {
+        fprintf(f, "%s%s", sep, range.s);
+        sep = "; ";
+    }
+    if (k->choices) {
+        fprintf(f, "%s", sep);
+        print_names(f, k->choices, 0);
+        sep = "; ";
+    }
+    if (k->type == VT_LIST) {
+        fprintf(f, "%s%g to %g entries", sep, k->lo, k->hi);
+        sep = "; ";
+    }
+    if (k->rule)
+        fprintf(f, "%s%s", sep, k->rule);
+}
+
+void amsph_case_print_keys(void *file)
+{
+    FILE *f = file;
+    fprintf(f, "| Key | Type | Unit | Default | Allowed | Description |\n");
+    fprintf(f, "|---|---|---|---|---|---|\n");
+    for (size_t i = 0; i < N_SPECS; i++) {
+        const key_spec *k = &specs[i];
+        fprintf(f, "| `%s%s` | %s | %s | %s | ", section_prefix[k->section], k->key,
+                type_name(k->type), k->unit ? k->unit : "-", default_text(k).s);
+        print_allowed(f, k);
+        fprintf(f, " | %s |\n", k->doc);
+    }
+}

@@ -1,0 +1,94 @@
+/* Case files: YAML → validated settings (amsph_case).
+ *
+ * Every key, its type, unit, range and default lives in one schema table in
+ * case.c; `amsph keys` prints that table as the Markdown reference that
+ * README.md carries. All lengths in m, times in s, SI everywhere. */
+#ifndef AMSPH_CASE_H
+#define AMSPH_CASE_H
+
+#include <stddef.h>
+
+#include "kinds.h"
+
+#define AMSPH_MAX_MATERIALS 16
+#define AMSPH_MAX_GEOMETRY 64
+#define AMSPH_NAME_LEN 64
+
+typedef enum { AMSPH_KERNEL_WENDLAND = 0, AMSPH_KERNEL_QUINTIC = 1 } amsph_kernel_type;
+
+/* Particle kinds as stored in the `kind` field; later kinds get new numbers. */
+typedef enum {
+    AMSPH_KIND_FLUID = KIND_FLUID,
+    AMSPH_KIND_WALL = KIND_WALL,
+    AMSPH_KIND_SOLID = KIND_SOLID
+} amsph_kind;
+
+typedef enum {
+    AMSPH_SHAPE_BOX = 0,
+    AMSPH_SHAPE_CIRCLE = 1, /* 2D only */
+    AMSPH_SHAPE_SPHERE = 2, /* 3D only */
+    AMSPH_SHAPE_CYLINDER = 3 /* 3D only */
+} amsph_shape;
+
+typedef enum { AMSPH_BACKEND_OPENMP = 0, AMSPH_BACKEND_OPENCL = 1 } amsph_backend_kind;
+
+typedef struct {
+    char name[AMSPH_NAME_LEN];
+    double density;   /* reference density rho0, kg/m^3, > 0 */
+    double viscosity; /* dynamic viscosity, Pa s, >= 0 (default 0) */
+    double sound_speed; /* artificial speed of sound c0, m/s, >= 0 (default 0: not set) */
+} amsph_material;
+
+/* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at
+ * min along axis d ("-x", "-y", "-z"), bit 2d+1 the face at max ("+x", ...). */
+#define AMSPH_FACE_BIT(axis, upper) (1u << (2 * (axis) + ((upper) ? 1 : 0)))
+
+typedef struct {
+    amsph_shape shape;
+    amsph_kind kind;
+    int material;          /* index into amsph_case.materials */
+    double min[3], max[3]; /* box corners, m (unused components 0) */
+    double center[3];      /* circle/sphere centre; cylinder: centre of the base, m */
+    double radius;         /* circle/sphere/cylinder radius, m */
+    double axis[3];        /* cylinder axis, unit vector (normalised by the parser) */
+    double length;         /* cylinder length along axis, m */
+    int layers;            /* box only: 0 = filled box; n > 0 = n particle layers of wall
+                              outside the box faces (a tank or channel around the box) */
+    unsigned open_faces;   /* box with layers > 0: faces without wall (AMSPH_FACE_BIT) */
+    double velocity[3];    /* initial velocity, m/s (default 0) */
+    double temperature;    /* initial temperature, K */
+    int has_temperature;   /* 1 if `temperature` was given */
+    int line;              /* line of the block in the case file, for messages */
+} amsph_geometry;
+
+typedef struct {
+    char path[512];       /* the file it came from (or the name given to the string parser) */
+    int dim;              /* 2 or 3 */
+    double domain_min[3]; /* m; components >= dim are 0 */
+    double domain_max[3];
+    int periodic[3];      /* 1 where the direction is periodic */
+    double dx;            /* initial particle spacing, m, > 0 */
+    double h_over_dx;     /* smoothing length / dx, default 1.2, in [1, 3] */
+    amsph_kernel_type kernel; /* default Wendland C2 */
+    double end_time;      /* s, > 0 */
+    double output_interval; /* s, > 0 */
+    amsph_backend_kind backend; /* default openmp; the CLI's --backend overrides */
+    int device;           /* OpenCL device index, default -1 (first); --device overrides */
+    double gravity[3];    /* m/s^2, default 0 */
+    int n_materials;
+    amsph_material materials[AMSPH_MAX_MATERIALS];
+    int n_geometry;
+    amsph_geometry geometry[AMSPH_MAX_GEOMETRY];
+} amsph_case;
+
+/* Parses and validates. Returns 0 on success; otherwise a non-zero status and
+ * writes one line "file:line: message" (no trailing newline) into err. */
+int amsph_case_load(const char *path, amsph_case *c, char *err, size_t errlen);
+int amsph_case_parse(const char *text, size_t len, const char *name, amsph_case *c, char *err,
+                     size_t errlen);
+
+/* Writes the Markdown key reference (one table row per key, with unit and
+ * default) to the stream; README.md carries its output. */
+void amsph_case_print_keys(void *file /* FILE * */);
+
+#endif

@@ -1,0 +1,143 @@
+#include "grid.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+
+#define SCAN_CHUNKS 1024
+
+static const char axis_name[3] = {'x', 'y', 'z'};
+
+static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double hi[3],
+                        const int periodic[3], double support)
+{
+    grid_geometry *geo = &g->geometry;
+    memset(geo, 0, sizeof *geo);
+    geo->cell_size = (amsph_real)support;
+    geo->total_cells = 1;
+    for (int d = 0; d < 3; ++d) {
+        geo->ncell[d] = 1;
+        if (d >= dim)
+            continue;
+        const double length = hi[d] - lo[d];
+        geo->lo[d] = (amsph_real)lo[d];
+        geo->length[d] = (amsph_real)length;
+        geo->periodic[d] = periodic[d];
+        const double cells = length / support;
+        if (periodic[d]) {
+            if (cells < 3.0)
+                return amsph_fail("periodic axis %c: the domain length %g m is shorter than 3 "
+                                  "kernel supports (%g m); enlarge the domain or refine dx",
+                                  axis_name[d], length, 3.0 * support);
+            geo->ncell[d] = (int)floor(cells);
+        } else {
+            geo->ncell[d] = cells < 1.0 ? 1 : (int)ceil(cells);
+        }
+        if ((double)geo->total_cells * geo->ncell[d] > 2.0e9)
+            return amsph_fail("the grid would need more than 2e9 cells; shrink the domain");
+        geo->total_cells *= geo->ncell[d];
+    }
+    return 0;
+}
+
+int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
+                    const double hi[3], const int periodic[3], double support, int capacity)
+{
+    memset(g, 0, sizeof *g);
+    g->dim = dim;
+    g->capacity = capacity;
+    AMSPH_CHECK(layout_cells(g, dim, lo, hi, periodic, support));
+    const size_t buckets = (size_t)g->geometry.total_cells + 1;
+    AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->cell));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->order));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->count));
+    AMSPH_CHECK(amsph_buffer_alloc(b, buckets * sizeof(int), &g->fill));
+    AMSPH_CHECK(amsph_buffer_alloc(b, SCAN_CHUNKS * sizeof(int), &g->chunk_total));
+    return 0;
+}
+
+void amsph_grid_free(amsph_grid *g, amsph_backend *b)
+{
+    amsph_buffer_free(b, g->cell);
+    amsph_buffer_free(b, g->order);
+    amsph_buffer_free(b, g->cell_start);
+    amsph_buffer_free(b, g->count);
+    amsph_buffer_free(b, g->fill);
+    amsph_buffer_free(b, g->chunk_total);
+    for (int w = 0; w <= AMSPH_GRID_SCRATCH; ++w)
+        amsph_buffer_free(b, g->scratch[w]);
+    memset(g, 0, sizeof *g);
+}
+
+static int fill_zero(amsph_backend *b, amsph_buffer *buf, int n)
+{
+    return AMSPH_LAUNCH(b, "fill_words", n, amsph_arg_buffer(buf), amsph_arg_int(n),
+                        amsph_arg_uint(0));
+}
+
+/* cell_start = exclusive prefix sum of count over n entries. */
+static int prefix_sum(amsph_grid *g, amsph_backend *b, int n)
+{
+    const int chunk = (n + SCAN_CHUNKS - 1) / SCAN_CHUNKS;
+    const int nchunks = (n + chunk - 1) / chunk;
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_chunks", nchunks, amsph_arg_buffer(g->count),
+                             amsph_arg_int(n), amsph_arg_int(chunk), amsph_arg_int(nchunks),
+                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->chunk_total)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_totals", 1, amsph_arg_buffer(g->chunk_total),
+                             amsph_arg_int(nchunks)));
+    return AMSPH_LAUNCH(b, "scan_add", nchunks, amsph_arg_buffer(g->cell_start), amsph_arg_int(n),
+                        amsph_arg_int(chunk), amsph_arg_int(nchunks),
+                        amsph_arg_buffer(g->chunk_total));
+}
+
+/* Reorders one buffer of `words` 32-bit words per particle by g->order,
+ * through a scratch buffer of the same size that it then swaps with. */
+static int reorder(amsph_grid *g, amsph_backend *b, amsph_buffer **field, int words, int n)
+{
+    if (words > AMSPH_GRID_SCRATCH)
+        return amsph_fail("grid: a field of %d words per particle is too wide to reorder", words);
+    amsph_buffer **scratch = &g->scratch[words];
+    if (!*scratch)
+        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)g->capacity * (size_t)words * 4, scratch));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "gather_words", n, amsph_arg_buffer(*field),
+                             amsph_arg_buffer(*scratch), amsph_arg_buffer(g->order),
+                             amsph_arg_int(n), amsph_arg_int(words)));
+    amsph_buffer *sorted = *scratch;
+    *scratch = *field;
+    *field = sorted;
+    return 0;
+}
+
+int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
+{
+    amsph_backend *b = p->backend;
+    const int n = p->n;
+    if (n > g->capacity)
+        return amsph_fail("grid: %d particles exceed the grid's capacity of %d", n, g->capacity);
+    const int buckets = g->geometry.total_cells + 1;
+    AMSPH_CHECK(fill_zero(b, g->count, buckets + 1));
+    AMSPH_CHECK(fill_zero(b, g->fill, buckets));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_bin", n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
+                             amsph_arg_int(n), amsph_arg_bytes(&g->geometry, sizeof g->geometry),
+                             amsph_arg_buffer(g->cell), amsph_arg_buffer(g->count)));
+    AMSPH_CHECK(prefix_sum(g, b, buckets + 1));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_scatter", n, amsph_arg_buffer(g->cell), amsph_arg_int(n),
+                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->fill),
+                             amsph_arg_buffer(g->order)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_order_cells", buckets, amsph_arg_buffer(g->order),
+                             amsph_arg_buffer(g->cell_start), amsph_arg_int(buckets),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_ID])));
+    for (int f = 0; f < AMSPH_FIELD_COUNT; ++f)
+        if (p->field[f])
+            AMSPH_CHECK(reorder(g, b, &p->field[f], (int)(amsph_field_bytes((amsph_field_id)f) / 4), n));
+    AMSPH_CHECK(reorder(g, b, &g->cell, 1, n));
+
+    int kept = 0;
+    AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)g->geometry.total_cells * sizeof(int),
+                               sizeof(int), &kept));
+    p->removed += n - kept;
+    p->n = kept;
+    return 0;
+}

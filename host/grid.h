@@ -1,0 +1,36 @@
+/* The sorted particle grid: when and how particles are binned and reordered.
+ * The counting sort runs on the device (kernels/grid.cl); the host only
+ * reads back how many particles remain. */
+#ifndef AMSPH_GRID_H
+#define AMSPH_GRID_H
+
+#include "particles.h"
+#include "real.h"
+#define AMSPH_SHARED_REAL amsph_real
+#include "grid_geometry.h"
+
+#define AMSPH_GRID_SCRATCH 8 /* scratch buffers by 32-bit words per particle */
+
+typedef struct {
+    grid_geometry geometry;
+    int dim;
+    int capacity;               /* particles the grid buffers hold */
+    amsph_buffer *cell;         /* bucket of each particle, in sorted order after a sort */
+    amsph_buffer *cell_start;   /* total_cells + 2 ints: first particle of each bucket */
+    amsph_buffer *count;        /* histogram, then the prefix sum's input */
+    amsph_buffer *fill;         /* slots taken per bucket during the scatter */
+    amsph_buffer *order;        /* sorted slot -> old index */
+    amsph_buffer *chunk_total;  /* prefix-sum chunk totals */
+    amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];
+} amsph_grid;
+
+/* Lays cells of side >= support over [lo, hi]; a periodic axis needs at
+ * least 3 cells. */
+int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
+                    const double hi[3], const int periodic[3], double support, int capacity);
+/* Bins and sorts the particles, reorders every present field, and drops the
+ * particles that left the domain (p->n shrinks, p->removed grows). */
+int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
+void amsph_grid_free(amsph_grid *g, amsph_backend *b);
+
+#endif

@@ -1,0 +1,206 @@
+/* The amsph command line. Exit status: 0 success, 1 a run failed, 2 bad
+ * input (command line or case file). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "backend.h"
+#include "bench.h"
+#include "case.h"
+#include "error.h"
+#include "sim.h"
+
+#define EXIT_BAD_INPUT 2
+
+static const char usage[] =
+    "usage: amsph <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  run CASE.yaml -o OUTDIR [--backend openmp|opencl] [--device N] [--quiet]\n"
+    "                      run a case; snapshots OUTDIR/snap_NNNNNN.h5 and OUTDIR/snapshots.xmf\n"
+    "  check CASE.yaml     validate a case file without running it\n"
+    "  devices             list the OpenCL devices and the OpenMP backend\n"
+    "  keys                print the case-file key reference (Markdown)\n"
+    "  bench grid [--particles N] [--repeat R] [--backend B] [--device N]\n"
+    "                      time the sorted-grid build (3D, random particles)\n"
+    "  --help              this text\n"
+    "\n"
+    "The backend and device default to the case file's, then openmp and the first\n"
+    "OpenCL device; AMSPH_DEVICE in the environment picks the OpenCL device too.\n";
+
+typedef struct {
+    const char *case_path;
+    const char *outdir;
+    const char *backend; /* NULL: the case's */
+    int device;          /* -1: the case's */
+    int quiet;
+    long long particles;
+    int repeat;
+} cli_options;
+
+static int bad_usage(const char *message, const char *value)
+{
+    fprintf(stderr, "amsph: %s%s%s\n(amsph --help for usage)\n", message, value ? ": " : "",
+            value ? value : "");
+    return EXIT_BAD_INPUT;
+}
+
+static int parse_int_option(const char *text, long long min, long long *out)
+{
+    char *end = NULL;
+    const long long v = strtoll(text, &end, 10);
+    if (!end || *end || end == text || v < min)
+        return 1;
+    *out = v;
+    return 0;
+}
+
+/* Parses the options after the command word; positional arguments go to
+ * case_path. Returns 0 or an exit status. */
+static int parse_options(int argc, char **argv, cli_options *o)
+{
+    for (int i = 0; i < argc; ++i) {
+        const char *a = argv[i];
+        const int has_value = i + 1 < argc;
+        long long v = 0;
+        if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            if (!has_value)
+                return bad_usage("-o needs a directory", NULL);
+            o->outdir = argv[++i];
+        } else if (!strcmp(a, "--backend")) {
+            if (!has_value || (strcmp(argv[i + 1], "openmp") && strcmp(argv[i + 1], "opencl")))
+                return bad_usage("--backend takes openmp or opencl", has_value ? argv[i + 1] : NULL);
+            o->backend = argv[++i];
+        } else if (!strcmp(a, "--device")) {
+            if (!has_value || parse_int_option(argv[i + 1], 0, &v))
+                return bad_usage("--device takes a device index >= 0", has_value ? argv[i + 1] : NULL);
+            o->device = (int)v;
+            ++i;
+        } else if (!strcmp(a, "--particles")) {
+            if (!has_value || parse_int_option(argv[i + 1], 1, &v) || v > 2000000000LL)
+                return bad_usage("--particles takes a count from 1 to 2e9", has_value ? argv[i + 1] : NULL);
+            o->particles = v;
+            ++i;
+        } else if (!strcmp(a, "--repeat")) {
+            if (!has_value || parse_int_option(argv[i + 1], 1, &v) || v > 100000)
+                return bad_usage("--repeat takes a count from 1 to 100000", has_value ? argv[i + 1] : NULL);
+            o->repeat = (int)v;
+            ++i;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o->quiet = 1;
+        } else if (a[0] == '-') {
+            return bad_usage("unknown option", a);
+        } else if (!o->case_path) {
+            o->case_path = a;
+        } else {
+            return bad_usage("unexpected argument", a);
+        }
+    }
+    return 0;
+}
+
+static int load_case(const char *path, amsph_case *c)
+{
+    if (!path)
+        return bad_usage("a case file is needed", NULL);
+    char error[1024];
+    if (amsph_case_load(path, c, error, sizeof error)) {
+        fprintf(stderr, "%s\n", error);
+        return EXIT_BAD_INPUT;
+    }
+    return 0;
+}
+
+static int open_backend(const char *name, int device, amsph_backend **b)
+{
+    if (amsph_backend_create(name, device, b)) {
+        fprintf(stderr, "amsph: %s\n", amsph_last_error());
+        return 1;
+    }
+    return 0;
+}
+
+static int command_run(const cli_options *o)
+{
+    amsph_case c;
+    int status = load_case(o->case_path, &c);
+    if (status)
+        return status;
+    if (!o->outdir)
+        return bad_usage("run needs an output directory: -o OUTDIR", NULL);
+    const char *backend = o->backend ? o->backend : c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
+    amsph_backend *b = NULL;
+    if (open_backend(backend, o->device >= 0 ? o->device : c.device, &b))
+        return 1;
+    if (!o->quiet)
+        fprintf(stderr, "amsph: %s on %s\n", c.path, b->description);
+    amsph_sim sim;
+    const amsph_run_options run = {.outdir = o->outdir, .quiet = o->quiet};
+    status = amsph_sim_create(&c, b, &sim);
+    if (!status) {
+        if (!o->quiet)
+            fprintf(stderr, "amsph: %d particles, h = %g m\n", sim.particles.n, sim.h);
+        status = amsph_sim_run(&sim, &run);
+    }
+    if (status)
+        fprintf(stderr, "amsph: %s\n", amsph_last_error());
+    else if (!o->quiet)
+        fprintf(stderr, "amsph: done, %lld steps, %lld particles removed; output in %s\n", sim.step,
+                sim.particles.removed, o->outdir);
+    amsph_sim_free(&sim);
+    amsph_backend_destroy(b);
+    return status ? 1 : 0;
+}
+
+static int command_check(const cli_options *o)
+{
+    amsph_case c;
+    const int status = load_case(o->case_path, &c);
+    if (!status)
+        printf("%s: ok (dimension %d, %d materials, %d geometry blocks)\n", c.path, c.dim,
+               c.n_materials, c.n_geometry);
+    return status;
+}
+
+static int command_bench(const cli_options *o)
+{
+    if (!o->case_path || strcmp(o->case_path, "grid"))
+        return bad_usage("bench knows: grid", o->case_path);
+    amsph_backend *b = NULL;
+    if (open_backend(o->backend ? o->backend : "openmp", o->device, &b))
+        return 1;
+    const int status = amsph_bench_grid(b, o->particles ? o->particles : 100000,
+                                        o->repeat ? o->repeat : 10, stdout);
+    if (status)
+        fprintf(stderr, "amsph: %s\n", amsph_last_error());
+    amsph_backend_destroy(b);
+    return status ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        fputs(usage, argc < 2 ? stderr : stdout);
+        return argc < 2 ? EXIT_BAD_INPUT : 0;
+    }
+    const char *command = argv[1];
+    cli_options o = {.device = -1};
+    int status = parse_options(argc - 2, argv + 2, &o);
+    if (status)
+        return status;
+    if (!strcmp(command, "run"))
+        return command_run(&o);
+    if (!strcmp(command, "check"))
+        return command_check(&o);
+    if (!strcmp(command, "devices")) {
+        amsph_backend_list(stdout);
+        return 0;
+    }
+    if (!strcmp(command, "keys")) {
+        amsph_case_print_keys(stdout);
+        return 0;
+    }
+    if (!strcmp(command, "bench"))
+        return command_bench(&o);
+    return bad_usage("unknown command", command);
+}

@@ -1,0 +1,73 @@
+/* Kernels that measure the discretisation itself: kernel moments and explicit
+ * neighbour lists. The tests use them to check the smoothing kernels and the
+ * grid against exact answers (VALIDATION.md K1, K2). */
+#include "device.h"
+#include "neighbours.h"
+#include "smoothing.h"
+
+/* Kernel moments with V_b = m_b / rho_b, per particle a:
+ *   zeroth[a]  = sum_b V_b W_ab                       (= 1 in the interior)
+ *   first[a]   = sum_b V_b (r_b - r_a) W_ab           (= 0)
+ *   gradient[a]= sum_b V_b (r_b - r_a) (x) grad_a W_ab  (= I), row-major 3x3
+ * (the last is the SPH gradient of f = r, with grad_a W_ab = F r_ab). */
+KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
+                           GLOBAL const real *density, GLOBAL const int *cell, int n,
+                           grid_geometry g, GLOBAL const int *cell_start, real h,
+                           GLOBAL real *zeroth, GLOBAL real *first, GLOBAL real *gradient)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        real m0 = REAL(0.0);
+        real m1[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        real m2[9] = {REAL(0.0)};
+        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real r = sqrt(r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2]);
+            const real v_b = mass[b] / density[b];
+            const real w = smoothing_w(r, h);
+            const real f = smoothing_grad_factor(r, h);
+            m0 += v_b * w;
+            for (int i = 0; i < 3; ++i) {
+                m1[i] -= v_b * r_ab[i] * w;
+                for (int j = 0; j < 3; ++j)
+                    m2[3 * i + j] -= v_b * r_ab[i] * f * r_ab[j];
+            }
+        }
+        zeroth[a] = m0;
+        for (int i = 0; i < 3; ++i)
+            first[3 * a + i] = m1[i];
+        for (int i = 0; i < 9; ++i)
+            gradient[9 * a + i] = m2[i];
+    }
+}
+
+/* Global ids of every b != a with |r_ab| < radius, up to max_neighbours;
+ * count[a] is the true number even when the list is cut. */
+KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
+                           GLOBAL const int *cell, int n, grid_geometry g,
+                           GLOBAL const int *cell_start, real radius, int max_neighbours,
+                           GLOBAL int *count, GLOBAL uint *neighbours)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        int found = 0;
+        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
+            if (b != a && r2 < radius * radius) {
+                if (found < max_neighbours)
+                    neighbours[max_neighbours * a + found] = id[b];
+                ++found;
+            }
+        }
+        count[a] = found;
+    }
+}

@@ -1,0 +1,141 @@
+/* Sorted particle grid, built on the device by a counting sort:
+ *   grid_bin        wrap periodic coordinates, cell of each particle, histogram
+ *   scan_*          exclusive prefix sum of the histogram → cell_start
+ *   grid_scatter    each particle to a slot of its cell
+ *   grid_order_cells  within a cell, slots ordered by global id (deterministic)
+ *   gather_words    reorder a field by the permutation
+ * Cells are numbered x fastest; bucket total_cells collects particles that
+ * left the domain (or whose position is not finite): they sort to the end and
+ * the host drops them. */
+#include "device.h"
+#include "neighbours.h"
+
+KERNEL void fill_words(GLOBAL uint *buffer, int n, uint value)
+{
+    FOR_EACH_ITEM(i, n) { buffer[i] = value; }
+}
+
+/* Axis cell of coordinate x, or -1 outside [lo, lo + length] (NaN included). */
+static inline int grid_axis_cell(const grid_geometry *g, int d, real x)
+{
+    const real s = (x - g->lo[d]) / g->cell_size;
+    if (!(s >= REAL(0.0)) || !(x <= g->lo[d] + g->length[d]))
+        return -1;
+    const int c = (int)s;
+    return c < g->ncell[d] ? c : g->ncell[d] - 1;
+}
+
+KERNEL void grid_bin(GLOBAL real *position, int n, grid_geometry g, GLOBAL int *cell,
+                     GLOBAL int *count)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        int index = 0;
+        int stride = 1;
+        for (int d = 0; d < AMSPH_DIM; ++d) {
+            real x = position[3 * i + d];
+            if (g.periodic[d]) {
+                const real hi = g.lo[d] + g.length[d];
+                if (x < g.lo[d])
+                    x += g.length[d];
+                else if (x >= hi)
+                    x -= g.length[d];
+                position[3 * i + d] = x;
+            }
+            const int c = grid_axis_cell(&g, d, x);
+            index = (c < 0 || index < 0) ? -1 : index + c * stride;
+            stride *= g.ncell[d];
+        }
+        const int bucket = index < 0 ? g.total_cells : index;
+        cell[i] = bucket;
+        ATOMIC_INC(&count[bucket]);
+    }
+}
+
+/* Exclusive prefix sum in three passes over chunks of `chunk` entries:
+ * each item scans its chunk, one item scans the chunk totals, each item adds
+ * its chunk's offset. */
+KERNEL void scan_chunks(GLOBAL const int *count, int n, int chunk, int nchunks, GLOBAL int *offset,
+                        GLOBAL int *chunk_total)
+{
+    FOR_EACH_ITEM(k, nchunks)
+    {
+        const int begin = k * chunk;
+        const int end = begin + chunk < n ? begin + chunk : n;
+        int sum = 0;
+        for (int j = begin; j < end; ++j) {
+            offset[j] = sum;
+            sum += count[j];
+        }
+        chunk_total[k] = sum;
+    }
+}
+
+KERNEL void scan_totals(GLOBAL int *chunk_total, int nchunks)
+{
+    FOR_EACH_ITEM(k, 1)
+    {
+        int sum = 0;
+        for (int j = 0; j < nchunks; ++j) {
+            const int t = chunk_total[j];
+            chunk_total[j] = sum;
+            sum += t;
+        }
+    }
+}
+
+KERNEL void scan_add(GLOBAL int *offset, int n, int chunk, int nchunks,
+                     GLOBAL const int *chunk_total)
+{
+    FOR_EACH_ITEM(k, nchunks)
+    {
+        const int begin = k * chunk;
+        const int end = begin + chunk < n ? begin + chunk : n;
+        for (int j = begin; j < end; ++j)
+            offset[j] += chunk_total[k];
+    }
+}
+
+KERNEL void grid_scatter(GLOBAL const int *cell, int n, GLOBAL const int *cell_start,
+                         GLOBAL int *fill, GLOBAL int *order)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        const int c = cell[i];
+        order[cell_start[c] + ATOMIC_INC(&fill[c])] = i;
+    }
+}
+
+/* The scatter's order within a cell depends on thread timing; sorting each
+ * cell's slots by global id makes the result deterministic on every backend. */
+KERNEL void grid_order_cells(GLOBAL int *order, GLOBAL const int *cell_start, int nbuckets,
+                             GLOBAL const uint *id)
+{
+    FOR_EACH_ITEM(c, nbuckets)
+    {
+        const int begin = cell_start[c];
+        const int end = cell_start[c + 1];
+        for (int j = begin + 1; j < end; ++j) {
+            const int moving = order[j];
+            const uint key = id[moving];
+            int k = j - 1;
+            while (k >= begin && id[order[k]] > key) {
+                order[k + 1] = order[k];
+                --k;
+            }
+            order[k + 1] = moving;
+        }
+    }
+}
+
+/* dst[i] = src[order[i]] for a field of `words` 32-bit words per particle. */
+KERNEL void gather_words(GLOBAL const uint *src, GLOBAL uint *dst, GLOBAL const int *order, int n,
+                         int words)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        const int from = order[i];
+        for (int w = 0; w < words; ++w)
+            dst[words * i + w] = src[words * from + w];
+    }
+}

@@ -1,0 +1,64 @@
+/* Time integration: kick-drift-kick leap-frog (Russell 2018 Eq. 3.55 in
+ * its velocity-Verlet form; second order, one force evaluation per step):
+ *   u^{n+1/2} = u^n + a^n dt/2,         rho^{n+1/2} = rho^n + (drho/dt)^n dt/2
+ *   r^{n+1}   = r^n + u^{n+1/2} dt
+ *   u^{n+1}   = u^{n+1/2} + a^{n+1} dt/2, rho^{n+1} = rho^{n+1/2} + (drho/dt)^{n+1} dt/2
+ * with the rates at n+1 evaluated from r^{n+1}, u^{n+1/2}, rho^{n+1/2}.
+ * Fluid particles are kicked; walls and fixed solids keep their velocity
+ * (a moving wall drifts at it) and take their density from the fluid. */
+#include "device.h"
+#include "kinds.h"
+
+/* a = g for fluid, 0 elsewhere: the rates of a scene without fluid forces. */
+KERNEL void body_force(GLOBAL const int *kind, int n, real gx, real gy, real gz,
+                       GLOBAL real *acceleration)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        const real on = kind[i] == KIND_FLUID ? REAL(1.0) : REAL(0.0);
+        acceleration[3 * i + 0] = on * gx;
+        acceleration[3 * i + 1] = on * gy;
+        acceleration[3 * i + 2] = on * gz;
+    }
+}
+
+KERNEL void kick(GLOBAL const int *kind, GLOBAL const real *acceleration, int n, real half_dt,
+                 GLOBAL real *velocity)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        if (kind[i] == KIND_FLUID) {
+            for (int d = 0; d < AMSPH_DIM; ++d)
+                velocity[3 * i + d] += half_dt * acceleration[3 * i + d];
+        }
+    }
+}
+
+KERNEL void kick_density(GLOBAL const int *kind, GLOBAL const real *density_rate, int n,
+                         real half_dt, GLOBAL real *density)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        if (kind[i] == KIND_FLUID)
+            density[i] += half_dt * density_rate[i];
+    }
+}
+
+KERNEL void drift(GLOBAL const real *velocity, int n, real dt, GLOBAL real *position)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        for (int d = 0; d < AMSPH_DIM; ++d)
+            position[3 * i + d] += dt * velocity[3 * i + d];
+    }
+}
+
+/* |v| per particle of a 3-vector field (speed, acceleration magnitude). */
+KERNEL void vector_norm(GLOBAL const real *v, int n, GLOBAL real *out)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        const real x = v[3 * i], y = v[3 * i + 1], z = v[3 * i + 2];
+        out[i] = sqrt(x * x + y * y + z * z);
+    }
+}

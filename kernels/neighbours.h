@@ -1,0 +1,71 @@
+/* The sorted grid as seen by a kernel: cell coordinates, the minimum-image
+ * displacement for periodic axes, and the loop over the 3^d cells around a
+ * particle. Particles are sorted by cell; cell_start[c] .. cell_start[c+1]
+ * are the particles of cell c. */
+#ifndef AMSPH_NEIGHBOURS_H
+#define AMSPH_NEIGHBOURS_H
+
+#include "device.h"
+
+#if AMSPH_DIM == 2
+#define NEIGHBOUR_CELLS 9
+#else
+#define NEIGHBOUR_CELLS 27
+#endif
+
+/* Cell coordinates of cell index c (x fastest). */
+static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
+{
+    cc[0] = c % g->ncell[0];
+    cc[1] = (c / g->ncell[0]) % g->ncell[1];
+    cc[2] = c / (g->ncell[0] * g->ncell[1]);
+}
+
+/* Index of the k-th of the 3^d cells around cc (k = 0 .. NEIGHBOUR_CELLS-1),
+ * wrapped on periodic axes; -1 where it falls outside a closed axis. */
+static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k)
+{
+    int index = 0;
+    int stride = 1;
+    for (int d = 0; d < AMSPH_DIM; ++d) {
+        int c = cc[d] + k % 3 - 1;
+        k /= 3;
+        if (c < 0 || c >= g->ncell[d]) {
+            if (!g->periodic[d])
+                return -1;
+            c = c < 0 ? c + g->ncell[d] : c - g->ncell[d];
+        }
+        index += c * stride;
+        stride *= g->ncell[d];
+    }
+    return index;
+}
+
+/* r_ab = r_a - r_b, the nearest periodic image on periodic axes. */
+static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *position, int a,
+                                     int b, real r_ab[3])
+{
+    for (int d = 0; d < 3; ++d) {
+        real r = position[3 * a + d] - position[3 * b + d];
+        if (g->periodic[d]) {
+            const real half_length = REAL(0.5) * g->length[d];
+            if (r > half_length)
+                r -= g->length[d];
+            else if (r < -half_length)
+                r += g->length[d];
+        }
+        r_ab[d] = r;
+    }
+}
+
+/* Loop b over every particle in the 3^d cells around cell coordinates cc
+ * (particle a itself included: callers skip b == a where it matters).
+ *   FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start) { ... } */
+#define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start)                                                   \
+    for (int nb_k_ = 0; nb_k_ < NEIGHBOUR_CELLS; ++nb_k_)                                          \
+        for (int nb_c_ = grid_neighbour_cell((g), (cc), nb_k_),                                    \
+                 b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                          \
+                 nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                                \
+             b < nb_end_; ++b)
+
+#endif

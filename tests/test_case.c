@@ -1,0 +1,716 @@
+/* Tests of the case-file parser (host/case.c).
+ *
+ * 1. Bad inputs: each must fail with exactly the expected one-line message.
+ * 2. Good inputs: parsed values are checked (defaults, vectors, face bits,
+ *    normalised axis, key order not mattering).
+ * 3. Robustness: deep nesting, huge keys and numbers, NUL bytes, and a
+ *    deterministic fuzz loop of byte mutations; every failure must give a
+ *    "case.yaml:LINE: ..." message on one line.
+ * Prints one line per failure and ends with "N passed, M failed". */
+#include "case.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NAME "case.yaml"
+
+static int passed, failed;
+static amsph_case parsed; /* large; kept out of the stack */
+
+static void report(int ok, const char *test, const char *what)
+{
+    if (ok) {
+        passed++;
+        return;
+    }
+    failed++;
+    printf("FAIL %s: %s\n", test, what);
+}
+
+/* ---- bad inputs ---------------------------------------------------------- */
+
+/* A valid 2D case, in pieces, so that bad cases can swap one piece. Lines:
+ * 1-7 settings, 8-10 materials, 11-16 geometry. */
+#define DOMAIN2                                                                                    \
+    "dimension: 2\n"                                                                               \
+    "domain:\n"                                                                                    \
+    "  min: [0, 0]\n"                                                                              \
+    "  max: [1, 1]\n"
+#define HEAD2                                                                                      \
+    DOMAIN2                                                                                        \
+    "dx: 0.01\n"                                                                                   \
+    "end_time: 1\n"                                                                                \
+    "output_interval: 0.1\n"
+#define MATS                                                                                       \
+    "materials:\n"                                                                                 \
+    "  - name: water\n"                                                                            \
+    "    density: 1000\n"
+#define GEO_BOX                                                                                    \
+    "geometry:\n"                                                                                  \
+    "  - shape: box\n"                                                                             \
+    "    kind: fluid\n"                                                                            \
+    "    material: water\n"                                                                        \
+    "    min: [0, 0]\n"                                                                            \
+    "    max: [0.5, 0.5]\n"
+#define GEO_START                                                                                  \
+    "geometry:\n"                                                                                  \
+    "  - kind: fluid\n"                                                                            \
+    "    material: water\n"
+#define BASE2 HEAD2 MATS GEO_BOX
+#define HEAD3                                                                                      \
+    "dimension: 3\n"                                                                               \
+    "domain:\n"                                                                                    \
+    "  min: [0, 0, 0]\n"                                                                           \
+    "  max: [1, 1, 1]\n"                                                                           \
+    "dx: 0.01\n"                                                                                   \
+    "end_time: 1\n"                                                                                \
+    "output_interval: 0.1\n"
+
+typedef struct {
+    const char *name;
+    const char *text;
+    const char *expected; /* the whole message */
+} bad_case;
+
+static const bad_case bad_cases[] = {
+    /* YAML syntax */
+    {"syntax: unclosed flow map", "dimension: 2\ndomain: {min: [0, 0]\ndx: 1\n",
+     NAME ":3: YAML syntax error: did not find expected ',' or '}' "
+          "(while parsing a flow mapping on line 2)"},
+    {"syntax: bad indentation", "dimension: 2\n  dx: 1\n",
+     NAME ":2: YAML syntax error: mapping values are not allowed in this context"},
+    {"syntax: tab indentation", "dimension: 2\n\tdx: 1\n",
+     NAME ":2: YAML syntax error: found a tab character that violates indentation "
+          "(while scanning a plain scalar on line 1)"},
+    {"syntax: undefined alias", DOMAIN2 "dx: *spacing\n",
+     NAME ":5: YAML syntax error: found undefined alias"},
+    {"syntax: control character", DOMAIN2 "dx: \001\n",
+     NAME ":5: unreadable text: control characters are not allowed"},
+    {"syntax: invalid UTF-8", "dimension: 2\nd\377x: 1\n",
+     NAME ":2: unreadable text: invalid leading UTF-8 octet"},
+
+    /* documents */
+    {"empty file", "", NAME ":1: the case file is empty; expected keys such as 'dimension'"},
+    {"only comments", "# nothing here\n\n",
+     NAME ":1: the case file is empty; expected keys such as 'dimension'"},
+    {"root is a list", "- dimension: 2\n",
+     NAME ":1: a case file must be a map of keys, got a list"},
+    {"root is a scalar", "hello\n", NAME ":1: a case file must be a map of keys, got 'hello'"},
+    {"two documents", BASE2 "---\n" BASE2,
+     NAME ":17: a second YAML document starts here; a case file holds exactly one"},
+
+    /* unknown keys, duplicate keys */
+    {"unknown key with suggestion", BASE2 "end_tme: 3\n",
+     NAME ":17: unknown key 'end_tme' in top level; did you mean 'end_time'?"},
+    {"unknown key without suggestion", BASE2 "colour: red\n",
+     NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
+          "kernel, end_time, output_interval, backend, device, gravity, materials, geometry)"},
+    {"unknown key in domain",
+     "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
+     "[true, true]\n",
+     NAME ":5: unknown key 'periodc' in domain; did you mean 'periodic'?"},
+    {"unknown key in material", HEAD2 "materials:\n  - name: water\n    densty: 1000\n" GEO_BOX,
+     NAME ":10: unknown key 'densty' in materials[0]; did you mean 'density'?"},
+    {"unknown key in geometry",
+     HEAD2 MATS GEO_START "    shape: circle\n    center: [0.5, 0.5]\n    radus: 0.1\n",
+     NAME ":16: unknown key 'radus' in geometry[0]; did you mean 'radius'?"},
+    {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
+     NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
+          "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
+          "backend, device, gravity, materials, geometry)"},
+    {"key that is a list", BASE2 "[a]: 1\n",
+     NAME ":17: keys in top level must be names, got a list"},
+    {"duplicate key", BASE2 "dx: 0.02\n",
+     NAME ":17: duplicate key 'dx' in top level (first on line 5)"},
+    {"duplicate key in geometry", BASE2 "    kind: wall\n",
+     NAME ":17: duplicate key 'kind' in geometry[0] (first on line 13)"},
+
+    /* types */
+    {"number is a word", DOMAIN2 "dx: abc\n", NAME ":5: 'dx' must be a number, got 'abc'"},
+    {"number is inf", DOMAIN2 "dx: 1\nend_time: inf\n",
+     NAME ":6: 'end_time' must be a number, got 'inf'"},
+    {"number is .nan", DOMAIN2 "dx: 1\nend_time: .nan\n",
+     NAME ":6: 'end_time' must be a number, got '.nan'"},
+    {"number is hex", DOMAIN2 "dx: 0x10\n", NAME ":5: 'dx' must be a number, got '0x10'"},
+    {"number overflows", DOMAIN2 "dx: 1e999\n", NAME ":5: 'dx' is out of range, got '1e999'"},
+    {"number is empty", DOMAIN2 "dx:\n", NAME ":5: 'dx' must be a number, got an empty value"},
+    {"number is a list", DOMAIN2 "dx: [1]\n", NAME ":5: 'dx' must be a number, got a list"},
+    {"integer is a float", "dimension: 2.5\n",
+     NAME ":1: 'dimension' must be an integer, got '2.5'"},
+    {"integer overflows", BASE2 "device: 99999999999999999999\n",
+     NAME ":17: 'device' is out of range, got '99999999999999999999'"},
+    {"boolean is yes",
+     "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodic: [yes, "
+     "false]\n",
+     NAME ":5: 'domain.periodic[0]' must be true or false, got 'yes'"},
+    {"vector is a number", BASE2 "gravity: 9.81\n",
+     NAME ":17: 'gravity' must be a list of 2 numbers, got '9.81'"},
+    {"vector component is a word", "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, x]\n",
+     NAME ":4: 'domain.max[1]' must be a number, got 'x'"},
+    {"vector component is a cycle", "dimension: 2\ndomain:\n  min: &a [*a, 0]\n  max: [1, 1]\n",
+     NAME ":3: 'domain.min[0]' must be a number, got a list"},
+    {"domain is a list", "dimension: 2\ndomain: [0, 1]\n",
+     NAME ":2: 'domain' must be a map, got a list"},
+    {"materials is a word", HEAD2 "materials: water\n",
+     NAME ":8: 'materials' must be a list of maps, got 'water'"},
+    {"material entry is a word", HEAD2 "materials:\n  - water\n",
+     NAME ":9: 'materials[0]' must be a map, got 'water'"},
+    {"material name is a map", HEAD2 "materials:\n  - name: {a: 1}\n    density: 1\n",
+     NAME ":9: 'materials[0].name' must be a non-empty name, got a map"},
+    {"material name too long",
+     HEAD2
+     "materials:\n  - name: abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz0123456789ab\n"
+     "    density: 1\n",
+     NAME ":9: 'materials[0].name' is too long (64 characters, at most 63): "
+          "'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...'"},
+    {"material name with newline", HEAD2 "materials:\n  - name: \"wa\\nter\"\n    density: 1\n",
+     NAME ":9: 'materials[0].name' must not contain control characters"},
+
+    /* ranges */
+    {"dx negative", DOMAIN2 "dx: -1\n", NAME ":5: 'dx' must be > 0, got -1"},
+    {"dx zero", DOMAIN2 "dx: 0.0\n", NAME ":5: 'dx' must be > 0, got 0.0"},
+    {"h_over_dx too large", BASE2 "h_over_dx: 5\n",
+     NAME ":17: 'h_over_dx' must be in [1, 3], got 5"},
+    {"dimension 4", "dimension: 4\n", NAME ":1: 'dimension' must be 2 or 3, got 4"},
+    {"device negative", BASE2 "device: -2\n", NAME ":17: 'device' must be >= -1, got -2"},
+    {"viscosity negative",
+     HEAD2 "materials:\n  - name: water\n    density: 1\n    viscosity: "
+           "-1e-3\n",
+     NAME ":11: 'materials[0].viscosity' must be >= 0, got -1e-3"},
+    {"temperature zero", BASE2 "    temperature: 0\n",
+     NAME ":17: 'geometry[0].temperature' must be > 0, got 0"},
+    {"layers negative", BASE2 "    layers: -2\n",
+     NAME ":17: 'geometry[0].layers' must be >= 0, got -2"},
+    {"domain max not above min", "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 0]\n",
+     NAME ":4: 'domain.max[1]' (0) must be > 'domain.min[1]' (0)"},
+    {"box max below min",
+     HEAD2 MATS GEO_START "    shape: box\n    min: [0, 0]\n"
+                          "    max: [-0.5, 0.5]\n",
+     NAME ":16: 'geometry[0].max[0]' (-0.5) must be > 'geometry[0].min[0]' (0)"},
+    {"cylinder axis zero",
+     HEAD3 MATS GEO_START "    shape: cylinder\n    center: [0, 0, 0]\n"
+                          "    axis: [0, 0, 0]\n    radius: 0.1\n    length: 0.2\n",
+     NAME ":16: 'geometry[0].axis' must not be zero"},
+
+    /* list lengths */
+    {"domain.min too long", "dimension: 2\ndomain:\n  min: [0, 0, 0]\n  max: [1, 1]\n",
+     NAME ":3: 'domain.min' must have 2 numbers (dimension 2), got 3"},
+    {"periodic too short",
+     "dimension: 3\ndomain:\n  min: [0, 0, 0]\n  max: [1, 1, 1]\n"
+     "  periodic: [true]\n",
+     NAME ":5: 'domain.periodic' must have 3 booleans (dimension 3), got 1"},
+    {"cylinder centre in 2 numbers",
+     HEAD3 MATS GEO_START "    shape: cylinder\n"
+                          "    center: [0, 0]\n",
+     NAME ":15: 'geometry[0].center' must have 3 numbers (dimension 3), got 2"},
+    {"no materials", HEAD2 "materials: []\n" GEO_BOX,
+     NAME ":8: 'materials' must have at least 1 entry"},
+
+    /* missing keys */
+    {"missing dx",
+     "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\nend_time: 1\n"
+     "output_interval: 0.1\n" MATS GEO_BOX,
+     NAME ":1: missing required key 'dx' in top level"},
+    {"missing dimension", "dx: 1\n", NAME ":1: missing required key 'dimension' in top level"},
+    {"missing domain.max", "dimension: 2\ndomain:\n  min: [0, 0]\n",
+     NAME ":3: missing required key 'max' in domain"},
+    {"missing density", HEAD2 "materials:\n  - name: water\n" GEO_BOX,
+     NAME ":9: missing required key 'density' in materials[0]"},
+    {"missing shape", HEAD2 MATS GEO_START,
+     NAME ":12: missing required key 'shape' in geometry[0]"},
+    {"missing radius of circle", HEAD2 MATS GEO_START "    shape: circle\n    center: [0, 0]\n",
+     NAME ":12: missing required key 'radius' in geometry[0] (shape 'circle')"},
+    {"missing geometry", HEAD2 MATS, NAME ":1: missing required key 'geometry' in top level"},
+
+    /* choices */
+    {"kernel cubic", BASE2 "kernel: cubic\n",
+     NAME ":17: 'kernel' must be one of wendland, quintic; got 'cubic'"},
+    {"backend cuda", BASE2 "backend: cuda\n",
+     NAME ":17: 'backend' must be one of openmp, opencl; got 'cuda'"},
+    {"kind gas", HEAD2 MATS "geometry:\n  - shape: box\n    kind: gas\n",
+     NAME ":13: 'geometry[0].kind' must be one of fluid, wall, solid; got 'gas'"},
+    {"shape is a list", HEAD2 MATS GEO_START "    shape: [box]\n",
+     NAME ":14: 'geometry[0].shape' must be one of box, circle, sphere, cylinder; got a list"},
+    {"sphere in 2D", HEAD2 MATS GEO_START "    shape: sphere\n",
+     NAME ":14: 'geometry[0].shape': 'sphere' exists only in 3D, but dimension is 2"},
+    {"circle in 3D", HEAD3 MATS GEO_START "    shape: circle\n",
+     NAME ":14: 'geometry[0].shape': 'circle' exists only in 2D, but dimension is 3"},
+    {"key not for the shape", BASE2 "    radius: 0.1\n",
+     NAME ":17: 'geometry[0].radius' does not apply to shape 'box'"},
+    {"layers on a circle",
+     HEAD2 MATS GEO_START "    shape: circle\n    center: [0, 0]\n"
+                          "    radius: 0.1\n    layers: 2\n",
+     NAME ":17: 'geometry[0].layers' does not apply to shape 'circle'"},
+
+    /* materials */
+    {"duplicate material name", HEAD2 MATS "  - name: water\n    density: 1\n" GEO_BOX,
+     NAME ":11: duplicate material name 'water' (first on line 9)"},
+    {"unknown material",
+     HEAD2 MATS "  - name: air\n    density: 1.2\n"
+                "geometry:\n  - shape: box\n    kind: fluid\n    material: oil\n",
+     NAME ":16: unknown material 'oil' in 'geometry[0].material'; known materials: water, air"},
+    {"material is empty", HEAD2 MATS "geometry:\n  - shape: box\n    kind: fluid\n    material:\n",
+     NAME ":14: 'geometry[0].material' must be a material name, got an empty value"},
+
+    /* open faces */
+    {"open without layers", BASE2 "    open: [+y]\n",
+     NAME ":17: 'geometry[0].open' needs 'layers' > 0 (open faces of a wall)"},
+    {"open unknown face", BASE2 "    layers: 3\n    open: [-x, top]\n",
+     NAME ":18: 'geometry[0].open[1]' must be one of -x, +x, -y, +y, -z, +z; got 'top'"},
+    {"open z face in 2D", BASE2 "    layers: 3\n    open:\n      - +z\n",
+     NAME ":19: 'geometry[0].open[0]': '+z' exists only in 3D, but dimension is 2"},
+    {"open face twice", BASE2 "    layers: 3\n    open: [+y, -x, +y]\n",
+     NAME ":18: 'geometry[0].open[2]': face '+y' is listed twice"},
+    {"open is a word", BASE2 "    layers: 3\n    open: +y\n",
+     NAME ":18: 'geometry[0].open' must be a list of faces (-x, +x, -y, +y, -z, +z), got '+y'"},
+};
+
+static void run_bad_cases(void)
+{
+    char err[1024];
+    for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
+        const bad_case *t = &bad_cases[i];
+        int rc = amsph_case_parse(t->text, strlen(t->text), NAME, &parsed, err, sizeof err);
+        char what[2400];
+        if (rc == 0)
+            snprintf(what, sizeof what, "parsed, expected \"%s\"", t->expected);
+        else
+            snprintf(what, sizeof what, "got      \"%s\"\n     expected \"%s\"", err, t->expected);
+        report(rc != 0 && strcmp(err, t->expected) == 0, t->name, what);
+    }
+}
+
+/* A list with one entry too many (entry: a format for entry number i + 1). */
+static void run_too_many(const char *head, const char *what, int count, const char *entry,
+                         const char *expected)
+{
+    static char text[16384];
+    size_t used = (size_t)snprintf(text, sizeof text, "%s%s:\n", head, what);
+    for (int i = 0; i < count; i++)
+        used += (size_t)snprintf(text + used, sizeof text - used, entry, i + 1);
+    char err[512];
+    int rc = amsph_case_parse(text, used, NAME, &parsed, err, sizeof err);
+    char label[64];
+    snprintf(label, sizeof label, "too many %s", what);
+    report(rc != 0 && strcmp(err, expected) == 0, label, err);
+}
+
+/* amsph_case_load: errors reading the file, and a file read to its end. */
+static void run_load(void)
+{
+    char err[512];
+    int rc = amsph_case_load("no/such/case.yaml", &parsed, err, sizeof err);
+    report(rc != 0 && strcmp(err, "no/such/case.yaml: cannot read case file: No such file or "
+                                  "directory") == 0,
+           "load missing file", err);
+    rc = amsph_case_load("/dev/null", &parsed, err, sizeof err);
+    report(rc != 0 && strcmp(err, "/dev/null:1: the case file is empty; expected keys such as "
+                                  "'dimension'") == 0,
+           "load empty file", err);
+}
+
+/* ---- good inputs --------------------------------------------------------- */
+
+static char failure[512]; /* first mismatch of the current check */
+
+static void expect(int ok, const char *what)
+{
+    if (!ok && !failure[0])
+        snprintf(failure, sizeof failure, "%s", what);
+}
+
+static int near(double a, double b)
+{
+    return fabs(a - b) <= 1e-12 * (1 + fabs(b));
+}
+
+static int vec_is(const double v[3], double x, double y, double z)
+{
+    return near(v[0], x) && near(v[1], y) && near(v[2], z);
+}
+
+/* Everything optional left out: the defaults. */
+static void check_default_values(const amsph_case *c)
+{
+    expect(c->dim == 2, "dim");
+    expect(strcmp(c->path, NAME) == 0, "path");
+    expect(vec_is(c->domain_min, 0, 0, 0) && vec_is(c->domain_max, 1, 1, 0), "domain");
+    expect(!c->periodic[0] && !c->periodic[1] && !c->periodic[2], "periodic default");
+    expect(near(c->dx, 0.01) && near(c->end_time, 1) && near(c->output_interval, 0.1), "times");
+    expect(near(c->h_over_dx, 1.2), "h_over_dx default");
+    expect(c->kernel == AMSPH_KERNEL_WENDLAND, "kernel default");
+    expect(c->backend == AMSPH_BACKEND_OPENMP, "backend default");
+    expect(c->device == -1, "device default");
+    expect(vec_is(c->gravity, 0, 0, 0), "gravity default");
+    expect(c->n_materials == 1 && strcmp(c->materials[0].name, "water") == 0, "materials");
+    expect(near(c->materials[0].density, 1000), "density");
+    expect(c->materials[0].viscosity == 0 && c->materials[0].sound_speed == 0, "material defaults");
+    const amsph_geometry *g = &c->geometry[0];
+    expect(c->n_geometry == 1, "n_geometry");
+    expect(g->shape == AMSPH_SHAPE_BOX && g->kind == AMSPH_KIND_FLUID && g->material == 0, "box");
+    expect(vec_is(g->min, 0, 0, 0) && vec_is(g->max, 0.5, 0.5, 0), "box corners");
+    expect(g->layers == 0 && g->open_faces == 0, "layers default");
+    expect(vec_is(g->velocity, 0, 0, 0), "velocity default");
+    expect(!g->has_temperature, "temperature not set");
+}
+
+static void check_defaults(const amsph_case *c)
+{
+    check_default_values(c);
+    expect(c->geometry[0].line == 12, "geometry line");
+}
+
+/* The sections of the defaults case in reverse order: geometry comes first. */
+static void check_reversed(const amsph_case *c)
+{
+    check_default_values(c);
+    expect(c->geometry[0].line == 2, "geometry line");
+}
+
+/* A 3D case with every key, written in an unusual order. */
+static const char full3d[] =
+    "geometry:\n"
+    "  - radius: 0.1\n"
+    "    length: 0.5\n"
+    "    axis: [0, 0, 2]\n"
+    "    center: [0.5, 0.5, 0]\n"
+    "    material: oil\n"
+    "    kind: solid\n"
+    "    shape: cylinder\n"
+    "    velocity: [0, 0, -1.5]\n"
+    "  - shape: box\n"
+    "    kind: wall\n"
+    "    material: water\n"
+    "    open: [+z, -x]\n"
+    "    layers: 3\n"
+    "    max: [1, 1, 0.8]\n"
+    "    min: [0, 0, 0]\n"
+    "  - {shape: sphere, kind: fluid, material: oil, center: [0.2, 0.3, 0.4],"
+    " radius: 5e-2, temperature: 293.15}\n"
+    "  - shape: cylinder\n"
+    "    kind: fluid\n"
+    "    material: water\n"
+    "    center: [0, 0, 0]\n"
+    "    axis: [1, 1, 0]\n"
+    "    radius: 1\n"
+    "    length: 1\n"
+    "materials:\n"
+    "  - name: water\n"
+    "    sound_speed: 20\n"
+    "    density: 1e3\n"
+    "    viscosity: 1.0e-3\n"
+    "  - density: 900\n"
+    "    name: oil\n"
+    "gravity: [0, 0, -9.81]\n"
+    "device: 2\n"
+    "backend: opencl\n"
+    "kernel: quintic\n"
+    "h_over_dx: 1.5\n"
+    "output_interval: .05\n"
+    "end_time: 2.\n"
+    "dx: +0.02\n"
+    "domain:\n"
+    "  periodic: [true, false, true]\n"
+    "  max: [1, 1, 1]\n"
+    "  min: [0, 0, 0]\n"
+    "dimension: 3\n";
+
+static void check_full3d(const amsph_case *c)
+{
+    expect(c->dim == 3, "dim");
+    expect(vec_is(c->domain_min, 0, 0, 0) && vec_is(c->domain_max, 1, 1, 1), "domain");
+    expect(c->periodic[0] == 1 && c->periodic[1] == 0 && c->periodic[2] == 1, "periodic");
+    expect(near(c->dx, 0.02) && near(c->end_time, 2) && near(c->output_interval, 0.05), "times");
+    expect(near(c->h_over_dx, 1.5) && c->kernel == AMSPH_KERNEL_QUINTIC, "kernel");
+    expect(c->backend == AMSPH_BACKEND_OPENCL && c->device == 2, "backend");
+    expect(vec_is(c->gravity, 0, 0, -9.81), "gravity");
+    expect(c->n_materials == 2, "n_materials");
+    expect(strcmp(c->materials[0].name, "water") == 0 && near(c->materials[0].density, 1000) &&
+               near(c->materials[0].viscosity, 1e-3) && near(c->materials[0].sound_speed, 20),
+           "water");
+    expect(strcmp(c->materials[1].name, "oil") == 0 && near(c->materials[1].density, 900) &&
+               c->materials[1].viscosity == 0,
+           "oil");
+    expect(c->n_geometry == 4, "n_geometry");
+    const amsph_geometry *cyl = &c->geometry[0], *box = &c->geometry[1];
+    const amsph_geometry *ball = &c->geometry[2], *tilted = &c->geometry[3];
+    expect(cyl->shape == AMSPH_SHAPE_CYLINDER && cyl->kind == AMSPH_KIND_SOLID &&
+               cyl->material == 1,
+           "cylinder");
+    expect(vec_is(cyl->axis, 0, 0, 1) && vec_is(cyl->center, 0.5, 0.5, 0), "cylinder axis");
+    expect(near(cyl->radius, 0.1) && near(cyl->length, 0.5), "cylinder size");
+    expect(vec_is(cyl->velocity, 0, 0, -1.5) && cyl->line == 2, "cylinder velocity, line");
+    expect(box->shape == AMSPH_SHAPE_BOX && box->kind == AMSPH_KIND_WALL && box->material == 0,
+           "box");
+    expect(box->layers == 3 && box->open_faces == (AMSPH_FACE_BIT(2, 1) | AMSPH_FACE_BIT(0, 0)),
+           "open faces");
+    expect(vec_is(box->min, 0, 0, 0) && vec_is(box->max, 1, 1, 0.8) && box->line == 10,
+           "box corners, line");
+    expect(ball->shape == AMSPH_SHAPE_SPHERE && ball->kind == AMSPH_KIND_FLUID &&
+               ball->material == 1 && near(ball->radius, 0.05),
+           "sphere");
+    expect(ball->has_temperature && near(ball->temperature, 293.15), "temperature");
+    expect(vec_is(ball->center, 0.2, 0.3, 0.4) && ball->line == 17, "sphere centre, line");
+    expect(!cyl->has_temperature && !box->has_temperature, "no temperature");
+    double r = 1 / sqrt(2);
+    expect(vec_is(tilted->axis, r, r, 0), "axis normalised");
+}
+
+/* 2D with a circle, a tank open at the top, periodic x and gravity. */
+static const char tank2d[] = "dimension: 2\n"
+                             "domain: {min: [-1, -1], max: [1, 1], periodic: [true, false]}\n"
+                             "dx: 1e-3\n"
+                             "end_time: 10\n"
+                             "output_interval: 20\n"
+                             "gravity: [0, -9.81]\n"
+                             "materials: [{name: water, density: 1000}]\n"
+                             "geometry:\n"
+                             "  - shape: box\n"
+                             "    kind: wall\n"
+                             "    material: water\n"
+                             "    min: [-0.5, -0.5]\n"
+                             "    max: [0.5, 0.5]\n"
+                             "    layers: 2\n"
+                             "    open: [+y]\n"
+                             "  - shape: circle\n"
+                             "    kind: fluid\n"
+                             "    material: water\n"
+                             "    center: [0, 0]\n"
+                             "    radius: 0.25\n"
+                             "    velocity: [1, 0]\n";
+
+static void check_tank2d(const amsph_case *c)
+{
+    expect(vec_is(c->domain_min, -1, -1, 0) && vec_is(c->domain_max, 1, 1, 0), "domain");
+    expect(c->periodic[0] == 1 && c->periodic[1] == 0, "periodic");
+    expect(near(c->dx, 1e-3) && near(c->output_interval, 20), "dx, interval > end_time");
+    expect(vec_is(c->gravity, 0, -9.81, 0), "gravity");
+    expect(c->geometry[0].layers == 2 && c->geometry[0].open_faces == AMSPH_FACE_BIT(1, 1),
+           "open top");
+    const amsph_geometry *g = &c->geometry[1];
+    expect(g->shape == AMSPH_SHAPE_CIRCLE && near(g->radius, 0.25), "circle");
+    expect(vec_is(g->center, 0, 0, 0) && vec_is(g->velocity, 1, 0, 0), "circle vectors");
+}
+
+typedef struct {
+    const char *name;
+    const char *text;
+    void (*check)(const amsph_case *c);
+} good_case;
+
+static const good_case good_cases[] = {
+    {"defaults", BASE2, check_defaults},
+    {"defaults, sections reversed", GEO_BOX MATS HEAD2, check_reversed},
+    {"every key, 3D, shuffled", full3d, check_full3d},
+    {"2D tank and circle", tank2d, check_tank2d},
+};
+
+static void run_good_case(const char *name, const char *text, size_t len,
+                          void (*check)(const amsph_case *c))
+{
+    char err[512], what[1024];
+    failure[0] = '\0';
+    if (amsph_case_parse(text, len, NAME, &parsed, err, sizeof err) != 0) {
+        snprintf(what, sizeof what, "unexpected error \"%s\"", err);
+        report(0, name, what);
+        return;
+    }
+    check(&parsed);
+    snprintf(what, sizeof what, "wrong %s", failure);
+    report(!failure[0], name, what);
+}
+
+/* Same as BASE2 but with "\r\n" line ends. */
+static size_t crlf_base(char *out, size_t size)
+{
+    size_t used = 0;
+    for (const char *s = BASE2; *s && used + 2 < size; s++) {
+        if (*s == '\n')
+            out[used++] = '\r';
+        out[used++] = *s;
+    }
+    return used;
+}
+
+static void run_good_cases(void)
+{
+    for (size_t i = 0; i < sizeof good_cases / sizeof good_cases[0]; i++) {
+        const good_case *t = &good_cases[i];
+        run_good_case(t->name, t->text, strlen(t->text), t->check);
+    }
+    char crlf[1024];
+    run_good_case("defaults, CRLF line ends", crlf, crlf_base(crlf, sizeof crlf), check_defaults);
+}
+
+/* ---- robustness ---------------------------------------------------------- */
+
+/* A failure message must be "case.yaml:LINE: text", on one line. */
+static int well_formed(const char *err)
+{
+    size_t n = strlen(NAME);
+    if (strncmp(err, NAME ":", n + 1) != 0 || !isdigit((unsigned char)err[n + 1]))
+        return 0;
+    const char *s = err + n + 1;
+    while (isdigit((unsigned char)*s))
+        s++;
+    if (strncmp(s, ": ", 2) != 0 || s[2] == '\0')
+        return 0;
+    for (; *s; s++)
+        if ((unsigned char)*s < 0x20)
+            return 0;
+    return 1;
+}
+
+/* Parses text that may or may not be valid; reports if a failure message
+ * is malformed. Returns 1 if it parsed; the message is left in err. */
+static int parse_any(const char *test, const char *text, size_t len, char err[256])
+{
+    if (amsph_case_parse(text, len, NAME, &parsed, err, 256) == 0)
+        return 1;
+    if (!well_formed(err)) {
+        char what[512];
+        snprintf(what, sizeof what, "malformed message \"%s\"", err);
+        report(0, test, what);
+    }
+    return 0;
+}
+
+/* head, open repeated count times, middle, close repeated count times, tail. */
+static char *build(const char *head, const char *open, size_t count, const char *middle,
+                   const char *close, const char *tail, size_t *len)
+{
+    size_t hl = strlen(head), ol = strlen(open), ml = strlen(middle), cl = strlen(close);
+    size_t total = hl + (ol + cl) * count + ml + strlen(tail);
+    char *text = malloc(total + 1), *at = text;
+    if (!text)
+        exit(2);
+    at += sprintf(at, "%s", head);
+    for (size_t i = 0; i < count; i++)
+        at += sprintf(at, "%s", open);
+    at += sprintf(at, "%s", middle);
+    for (size_t i = 0; i < count; i++)
+        at += sprintf(at, "%s", close);
+    sprintf(at, "%s", tail);
+    *len = total;
+    return text;
+}
+
+/* Inputs built to stress limits: each must fail quickly, without crashing,
+ * with a message that contains `expected`. */
+static void run_extremes(void)
+{
+    static const struct {
+        const char *name, *head, *open;
+        size_t count;
+        const char *middle, *close, *tail, *expected;
+    } extremes[] = {
+        {"deep nesting", "dimension: 2\ndx: ", "[", 100000, "", "", "\n",
+         ":2: lists or maps nested more than 1000 levels deep"},
+        {"deep closed nesting", "dimension: 2\ndx: ", "[", 100000, "1", "]", "\n",
+         ":2: lists or maps nested more than 1000 levels deep"},
+        {"deep maps", "dimension: 2\ndomain: ", "{a: ", 100000, "1", "}", "\n",
+         ":2: lists or maps nested more than 1000 levels deep"},
+        {"nesting just allowed", DOMAIN2 "dx: ", "[", 1000, "1", "]", "\n",
+         ":5: 'dx' must be a number, got a list"},
+        {"huge key", "", "k", 2000000, "", "", ": 1\n", ":1: YAML syntax error"},
+        {"long key", "", "k", 1000, "", "", ": 1\n", ":1: unknown key 'kkkk"},
+        {"long number", DOMAIN2 "dx: 1.", "0", 100000, "", "", "\nend_time: -1\n",
+         ":6: 'end_time' must be > 0, got -1"},
+        {"long material name", HEAD2 "materials:\n  - name: ", "n", 100000, "", "", "\n",
+         ":9: 'materials[0].name' is too long (100000 characters, at most 63)"},
+        {"many keys", "", "dx: 1\n", 100000, "", "", "", ":2: duplicate key 'dx'"},
+        {"many documents", "", "---\n", 10000, "", "", "", ":2: a second YAML document"},
+    };
+    for (size_t i = 0; i < sizeof extremes / sizeof extremes[0]; i++) {
+        size_t len;
+        char err[256];
+        char *text = build(extremes[i].head, extremes[i].open, extremes[i].count,
+                           extremes[i].middle, extremes[i].close, extremes[i].tail, &len);
+        int ok = !parse_any(extremes[i].name, text, len, err) && strstr(err, extremes[i].expected);
+        report(ok, extremes[i].name, err);
+        free(text);
+    }
+    static const char with_nul[] = "dimension: 2\ndx: 1\0\nend_time: 1\n";
+    char err[256];
+    int ok = !parse_any("NUL byte", with_nul, sizeof with_nul - 1, err) &&
+             strstr(err, ":2: unreadable text: control characters are not allowed");
+    report(ok, "NUL byte", err);
+}
+
+/* A small linear congruential generator: the fuzz run is the same every time. */
+static unsigned long long lcg_state = 20240601;
+
+static unsigned next_random(unsigned bound)
+{
+    lcg_state = lcg_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (unsigned)((lcg_state >> 33) % bound);
+}
+
+/* One random edit of text (length *len, room for size bytes). */
+static void mutate(char *text, size_t *len, size_t size)
+{
+    static const char interesting[] = "[]{}:,-#&*!|>'\"\n \t0123456789.e+";
+    unsigned op = next_random(5);
+    size_t at = *len ? next_random((unsigned)*len) : 0;
+    char byte =
+        next_random(2) ? interesting[next_random(sizeof interesting - 1)] : (char)next_random(256);
+    if (op == 0 && *len) {
+        text[at] = byte;
+    } else if (op == 1 && *len) {
+        memmove(text + at, text + at + 1, *len - at - 1);
+        (*len)--;
+    } else if (op == 2 && *len + 1 < size) {
+        memmove(text + at + 1, text + at, *len - at);
+        text[at] = byte;
+        (*len)++;
+    } else if (op == 3) {
+        *len = at;
+    } else if (*len) {
+        /* duplicate a line-sized chunk somewhere else */
+        size_t from = next_random((unsigned)*len), n = next_random(40);
+        if (from + n > *len)
+            n = *len - from;
+        if (*len + n < size) {
+            memmove(text + at + n, text + at, *len - at);
+            memmove(text + at, text + (from >= at ? from + n : from), n);
+            *len += n;
+        }
+    }
+}
+
+static void run_fuzz(void)
+{
+    enum { RUNS = 20000 };
+    const char *seeds[] = {BASE2, full3d, tank2d};
+    int parsed_ok = 0, before = failed;
+    char text[8192], err[256];
+    for (int run = 0; run < RUNS; run++) {
+        const char *seed = seeds[run % 3];
+        size_t len = strlen(seed);
+        memcpy(text, seed, len);
+        for (unsigned edits = 1 + next_random(4); edits > 0; edits--)
+            mutate(text, &len, sizeof text);
+        parsed_ok += parse_any("fuzz", text, len, err);
+    }
+    report(failed == before, "fuzz", "see above");
+    printf("fuzz: %d runs, %d still valid\n", RUNS, parsed_ok);
+}
+
+int main(void)
+{
+    run_bad_cases();
+    run_too_many(HEAD2, "materials", AMSPH_MAX_MATERIALS + 1, "  - {name: m%d, density: 1}\n",
+                 NAME ":8: 'materials' has 17 entries; at most 16 are allowed");
+    run_too_many(HEAD2 MATS, "geometry", AMSPH_MAX_GEOMETRY + 1,
+                 "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [1, %d]}\n",
+                 NAME ":11: 'geometry' has 65 entries; at most 64 are allowed");
+    run_load();
+    run_good_cases();
+    run_extremes();
+    run_fuzz();
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,269 @@
+/* The sorted grid (VALIDATION.md K2): neighbour pairs from the cell loop
+ * against brute force on random, clustered, single-cell, cell-face and
+ * periodic inputs; the sort as a permutation that keeps every field with
+ * its particle; removal of particles that leave the domain. Every backend,
+ * 2D and 3D. */
+#include <math.h>
+
+#include "grid_fixture.h"
+
+#define MAX_NEIGHBOURS 512
+
+typedef struct {
+    const char *name;
+    int n;
+    void (*place)(double *x, int n, int dim, unsigned long long *state);
+    int periodic;
+} input_case;
+
+static const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {1.0, 0.8, 0.6};
+static const double support = 0.1;
+
+static void place_random(double *x, int n, int dim, unsigned long long *s)
+{
+    for (int i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d)
+            x[3 * i + d] = d < dim ? lo[d] + (hi[d] - lo[d]) * fixture_random(s) : 0.0;
+}
+
+/* Three tight clusters and a sparse background. */
+static void place_clustered(double *x, int n, int dim, unsigned long long *s)
+{
+    static const double centres[3][3] = {{0.2, 0.2, 0.2}, {0.5, 0.41, 0.3}, {0.95, 0.75, 0.55}};
+    for (int i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d) {
+            const double c = centres[i % 3][d];
+            double v = i % 7 == 0 ? lo[d] + (hi[d] - lo[d]) * fixture_random(s)
+                                  : c + 0.06 * (fixture_random(s) - 0.5);
+            v = fmin(fmax(v, lo[d]), hi[d]);
+            x[3 * i + d] = d < dim ? v : 0.0;
+        }
+}
+
+/* Every particle in one cell. */
+static void place_one_cell(double *x, int n, int dim, unsigned long long *s)
+{
+    for (int i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d)
+            x[3 * i + d] = d < dim ? 0.3 + 0.099 * fixture_random(s) : 0.0;
+}
+
+/* Coordinates on cell faces (multiples of the cell size) and domain faces. */
+static void place_on_faces(double *x, int n, int dim, unsigned long long *s)
+{
+    for (int i = 0; i < n; ++i)
+        for (int d = 0; d < 3; ++d) {
+            const int faces = (int)floor((hi[d] - lo[d]) / support);
+            const double on_face = support * floor(fixture_random(s) * (faces + 1));
+            const double v = i % 2 ? fmin(on_face, hi[d]) : lo[d] + (hi[d] - lo[d]) * fixture_random(s);
+            x[3 * i + d] = d < dim ? v : 0.0;
+        }
+}
+
+static const input_case inputs[] = {
+    {"random", 1500, place_random, 0},       {"clustered", 1200, place_clustered, 0},
+    {"one cell", 300, place_one_cell, 0},     {"cell faces", 1000, place_on_faces, 0},
+    {"periodic", 1500, place_random, 1},      {"periodic faces", 800, place_on_faces, 1},
+};
+
+/* r^2 of the nearest image, in double. */
+static double distance2(const amsph_real *x, int a, int b, const int periodic[3])
+{
+    double r2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+        double r = (double)x[3 * a + d] - (double)x[3 * b + d];
+        if (periodic[d]) {
+            const double length = hi[d] - lo[d];
+            r -= length * round(r / length);
+        }
+        r2 += r * r;
+    }
+    return r2;
+}
+
+static int contains(const unsigned *list, int count, unsigned id)
+{
+    for (int k = 0; k < count; ++k)
+        if (list[k] == id)
+            return 1;
+    return 0;
+}
+
+/* Kernel neighbour lists against all pairs; pairs within 1e-5 of the radius
+ * are ambiguous in float and not counted either way. */
+static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3])
+{
+    const int n = f->p.n;
+    amsph_buffer *count_buf = NULL, *list_buf = NULL;
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &count_buf));
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * MAX_NEIGHBOURS * sizeof(unsigned), &list_buf));
+    CHECK_OK(AMSPH_LAUNCH(f->b, "neighbour_list", n, amsph_arg_buffer(f->p.field[AMSPH_FIELD_POSITION]),
+                          amsph_arg_buffer(f->p.field[AMSPH_FIELD_ID]), amsph_arg_buffer(f->g.cell),
+                          amsph_arg_int(n), fixture_geometry(f), amsph_arg_buffer(f->g.cell_start),
+                          amsph_arg_real(support), amsph_arg_int(MAX_NEIGHBOURS),
+                          amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf)));
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&f->p, &h));
+    int *count = malloc((size_t)n * sizeof *count);
+    unsigned *list = malloc((size_t)n * MAX_NEIGHBOURS * sizeof *list);
+    CHECK_OK(amsph_download(f->b, count_buf, 0, (size_t)n * sizeof *count, count));
+    CHECK_OK(amsph_download(f->b, list_buf, 0, (size_t)n * MAX_NEIGHBOURS * sizeof *list, list));
+    const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
+    const unsigned *id = h.data[AMSPH_FIELD_ID];
+    long long missing = 0, extra = 0, pairs = 0;
+    for (int a = 0; a < n; ++a) {
+        CHECK(count[a] <= MAX_NEIGHBOURS, "%s: particle %u has %d neighbours", in->name, id[a], count[a]);
+        const unsigned *mine = list + (size_t)a * MAX_NEIGHBOURS;
+        int expected = 0, ambiguous = 0;
+        for (int b = 0; b < n; ++b) {
+            if (b == a)
+                continue;
+            const double r = sqrt(distance2(x, a, b, periodic));
+            const int listed = contains(mine, count[a], id[b]);
+            if (fabs(r - support) < 1e-5 * support) {
+                ambiguous += listed;
+                continue;
+            }
+            if (r < support) {
+                ++expected;
+                missing += !listed;
+            }
+        }
+        extra += count[a] - ambiguous - expected;
+        pairs += expected;
+    }
+    CHECK(missing == 0 && extra == 0, "%s, %dD: %lld pairs missed, %lld extra, of %lld", in->name,
+          f->dim, missing, extra, pairs);
+    CHECK(pairs > n, "%s, %dD: only %lld pairs; the input does not test much", in->name, f->dim, pairs);
+    free(count);
+    free(list);
+    amsph_host_free(&h);
+    amsph_buffer_free(f->b, count_buf);
+    amsph_buffer_free(f->b, list_buf);
+}
+
+static void test_neighbours(amsph_backend *b, int dim)
+{
+    for (size_t k = 0; k < sizeof inputs / sizeof inputs[0]; ++k) {
+        const input_case *in = &inputs[k];
+        const int periodic[3] = {in->periodic, in->periodic && dim > 1, in->periodic && dim > 2};
+        unsigned long long state = 1000 + k;
+        double *x = malloc((size_t)in->n * 3 * sizeof *x);
+        in->place(x, in->n, dim, &state);
+        grid_fixture f;
+        const int status = fixture_create(&f, b, dim, 0, x, in->n, lo, hi, periodic, support, 1.0);
+        CHECK(status == 0, "%s: %s", in->name, amsph_last_error());
+        if (status == 0) {
+            CHECK(f.p.n == in->n, "%s: %d of %d particles kept", in->name, f.p.n, in->n);
+            check_pairs(&f, in, periodic);
+        }
+        fixture_free(&f);
+        free(x);
+    }
+}
+
+/* Fields tagged by id before the sort must still match their id after it. */
+static void test_sort_keeps_fields(amsph_backend *b, int dim)
+{
+    const int n = 2000;
+    const int periodic[3] = {0, 0, 0};
+    unsigned long long state = 7;
+    double *x = malloc((size_t)n * 3 * sizeof *x);
+    place_random(x, n, dim, &state);
+    /* five particles leave the domain, one has a NaN position */
+    for (int k = 0; k < 5; ++k)
+        x[3 * (100 * k + 3) + k % dim] = k % 2 ? -0.25 : 5.0;
+    x[3 * 777] = NAN;
+    amsph_host_particles h = {.n = n};
+    static const amsph_field_id fields[] = {AMSPH_FIELD_POSITION, AMSPH_FIELD_VELOCITY,
+                                            AMSPH_FIELD_DENSITY,  AMSPH_FIELD_KIND,
+                                            AMSPH_FIELD_MATERIAL, AMSPH_FIELD_ID};
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
+        CHECK_OK(amsph_host_add_field(&h, fields[k]));
+    for (int i = 0; i < n; ++i) {
+        for (int d = 0; d < 3; ++d) {
+            amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d] = (amsph_real)x[3 * i + d];
+            amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i + d] = (amsph_real)(i * (d + 1));
+        }
+        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(1000 + i);
+        ((int *)h.data[AMSPH_FIELD_KIND])[i] = i % 3;
+        ((int *)h.data[AMSPH_FIELD_MATERIAL])[i] = i % 5;
+        ((unsigned *)h.data[AMSPH_FIELD_ID])[i] = (unsigned)(n - 1 - i); /* ids not in index order */
+    }
+    amsph_particles p;
+    amsph_grid g;
+    CHECK_OK(amsph_particles_upload(b, &h, &p));
+    CHECK_OK(amsph_grid_init(&g, b, dim, lo, hi, periodic, support, n));
+    CHECK_OK(amsph_grid_sort(&g, &p));
+    CHECK_OK(amsph_grid_sort(&g, &p)); /* a second sort of sorted input changes nothing */
+    CHECK(p.n == n - 6 && p.removed == 6, "kept %d, removed %lld; expected %d and 6", p.n, p.removed, n - 6);
+
+    amsph_host_particles s;
+    CHECK_OK(amsph_particles_download(&p, &s));
+    int *cell = malloc((size_t)p.n * sizeof *cell);
+    int *start = malloc(((size_t)g.geometry.total_cells + 2) * sizeof *start);
+    CHECK_OK(amsph_download(b, g.cell, 0, (size_t)p.n * sizeof *cell, cell));
+    CHECK_OK(amsph_download(b, g.cell_start, 0, ((size_t)g.geometry.total_cells + 2) * sizeof *start, start));
+    char *seen = calloc((size_t)n, 1);
+    int bad_fields = 0, bad_order = 0, bad_cells = 0;
+    const unsigned *id = s.data[AMSPH_FIELD_ID];
+    for (int k = 0; k < p.n; ++k) {
+        const int i = n - 1 - (int)id[k]; /* original index */
+        seen[i]++;
+        for (int d = 0; d < 3; ++d) {
+            bad_fields += amsph_host_real(&s, AMSPH_FIELD_POSITION)[3 * k + d] != (amsph_real)x[3 * i + d];
+            bad_fields += amsph_host_real(&s, AMSPH_FIELD_VELOCITY)[3 * k + d] != (amsph_real)(i * (d + 1));
+        }
+        bad_fields += amsph_host_real(&s, AMSPH_FIELD_DENSITY)[k] != (amsph_real)(1000 + i);
+        bad_fields += ((int *)s.data[AMSPH_FIELD_KIND])[k] != i % 3;
+        bad_fields += ((int *)s.data[AMSPH_FIELD_MATERIAL])[k] != i % 5;
+        bad_cells += !(start[cell[k]] <= k && k < start[cell[k] + 1]);
+        if (k > 0)
+            bad_order += cell[k] < cell[k - 1] || (cell[k] == cell[k - 1] && id[k] <= id[k - 1]);
+    }
+    int duplicates = 0;
+    for (int i = 0; i < n; ++i)
+        duplicates += seen[i] > 1;
+    CHECK(bad_fields == 0, "%dD: %d field values separated from their particle", dim, bad_fields);
+    CHECK(duplicates == 0, "%dD: %d particles appear twice", dim, duplicates);
+    CHECK(bad_cells == 0, "%dD: %d particles outside their cell range", dim, bad_cells);
+    CHECK(bad_order == 0, "%dD: %d particles out of (cell, id) order", dim, bad_order);
+    CHECK(start[g.geometry.total_cells] == p.n, "%dD: cell ranges end at %d, not %d", dim,
+          start[g.geometry.total_cells], p.n);
+    free(seen);
+    free(cell);
+    free(start);
+    free(x);
+    amsph_host_free(&h);
+    amsph_host_free(&s);
+    amsph_grid_free(&g, b);
+    amsph_particles_free(&p);
+}
+
+/* A periodic axis shorter than three supports is refused with a message. */
+static void test_periodic_too_short(amsph_backend *b)
+{
+    amsph_grid g;
+    const int periodic[3] = {1, 0, 0};
+    const double short_hi[3] = {0.25, 1.0, 0.0};
+    CHECK(amsph_grid_init(&g, b, 2, lo, short_hi, periodic, support, 10) != 0, "accepted");
+    CHECK(strstr(amsph_last_error(), "periodic axis x") != NULL, "message: %s", amsph_last_error());
+    amsph_grid_free(&g, b);
+}
+
+int main(void)
+{
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        if (!b)
+            continue;
+        fprintf(stderr, "backend: %s\n", b->description);
+        for (int dim = 2; dim <= 3; ++dim) {
+            test_neighbours(b, dim);
+            test_sort_keeps_fields(b, dim);
+        }
+        test_periodic_too_short(b);
+        amsph_backend_destroy(b);
+    }
+    return testing_finish();
+}
