@@ -42,10 +42,10 @@ _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
-typedef enum { SEC_TOP, SEC_DOMAIN, SEC_MATERIAL, SEC_GEOMETRY } section_id;
+typedef enum { SEC_TOP, SEC_DOMAIN, SEC_FLUID, SEC_MATERIAL, SEC_GEOMETRY } section_id;
 
 /* How each section is named in the key reference. */
-static const char *const section_prefix[] = {"", "domain.", "materials[].", "geometry[]."};
+static const char *const section_prefix[] = {"", "domain.", "fluid.", "materials[].", "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -96,6 +96,20 @@ static const choice face_choices[] = {{"-x", (int)AMSPH_FACE_BIT(0, 0), 0},
                                       {"+z", (int)AMSPH_FACE_BIT(2, 1), 3},
                                       {NULL, 0, 0}};
 
+static const choice diffusion_choices[] = {{"none", DIFFUSION_NONE, 0},
+                                           {"molteni", DIFFUSION_MOLTENI, 0},
+                                           {"russell", DIFFUSION_RUSSELL, 0},
+                                           {NULL, 0, 0}};
+static const choice pressure_choices[] = {{"renormalised", PRESSURE_RENORMALISED, 0},
+                                          {"symmetric", PRESSURE_SYMMETRIC, 0},
+                                          {NULL, 0, 0}};
+static const choice viscosity_choices[] = {{"laminar", VISCOSITY_LAMINAR, 0},
+                                           {"artificial", VISCOSITY_ARTIFICIAL, 0},
+                                           {NULL, 0, 0}};
+static const choice bool_choices[] = {{"false", 0, 0}, {"true", 1, 0}, {NULL, 0, 0}};
+static const choice slip_choices[] = {
+    {"no_slip", WALL_NO_SLIP, 0}, {"free_slip", WALL_FREE_SLIP, 0}, {NULL, 0, 0}};
+
 #define SHAPE_BIT(s) (1u << (s))
 #define BOX_ONLY SHAPE_BIT(AMSPH_SHAPE_BOX)
 #define CYLINDER_ONLY SHAPE_BIT(AMSPH_SHAPE_CYLINDER)
@@ -119,6 +133,7 @@ typedef struct {
 } key_spec;
 
 #define CASE(field) offsetof(amsph_case, field)
+#define FLUID(field) offsetof(amsph_case, fluid.field)
 #define MAT(field) offsetof(amsph_material, field)
 #define GEO(field) offsetof(amsph_geometry, field)
 
@@ -159,6 +174,39 @@ static const key_spec specs[] = {
      .offset = CASE(device), .doc = "OpenCL device index; -1: the first; `--device` overrides"},
     {.section = SEC_TOP, .key = "gravity", .type = VT_VECTOR, .unit = "m/s²",
      .offset = CASE(gravity), .doc = "Gravitational acceleration"},
+    {.section = SEC_TOP, .key = "fluid", .type = VT_MAP, .sub = SEC_FLUID,
+     .doc = "Weakly compressible fluid module; present: on"},
+    {.section = SEC_FLUID, .key = "density_diffusion", .type = VT_CHOICE,
+     .choices = diffusion_choices, .def = DIFFUSION_RUSSELL, .offset = FLUID(density_diffusion),
+     .doc = "delta-SPH density diffusion: none, of rho (Molteni-Colagrossi), of rho - rho0 (Russell Eq. 3.53)"},
+    {.section = SEC_FLUID, .key = "delta", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
+     .lo = 0, .hi = 1, .def = 0.1, .offset = FLUID(delta), .doc = "delta-SPH coefficient"},
+    {.section = SEC_FLUID, .key = "pressure_gradient", .type = VT_CHOICE,
+     .choices = pressure_choices, .def = PRESSURE_RENORMALISED, .offset = FLUID(pressure_gradient),
+     .doc = "Pressure force: free-surface renormalised (Russell Eq. 3.17) or plain symmetric"},
+    {.section = SEC_FLUID, .key = "viscosity", .type = VT_CHOICE, .choices = viscosity_choices,
+     .def = VISCOSITY_LAMINAR, .offset = FLUID(viscosity),
+     .doc = "Viscous force: laminar (Morris 1997, harmonic-mean mu) or Monaghan artificial"},
+    {.section = SEC_FLUID, .key = "artificial_alpha", .type = VT_NUMBER, .flags = F_FROM_LO,
+     .lo = 0, .def = 0.02, .offset = FLUID(artificial_alpha),
+     .doc = "Monaghan's alpha for `viscosity: artificial`"},
+    {.section = SEC_FLUID, .key = "background_pressure", .type = VT_NUMBER, .unit = "Pa",
+     .def = 0, .offset = FLUID(background_pressure), .doc = "Pressure added to the equation of state"},
+    {.section = SEC_FLUID, .key = "wall_slip", .type = VT_CHOICE, .choices = slip_choices,
+     .def = WALL_NO_SLIP, .offset = FLUID(wall_slip), .doc = "Wall condition for the velocity"},
+    {.section = SEC_FLUID, .key = "cfl", .type = VT_NUMBER, .flags = F_ABOVE_LO | F_UP_TO_HI,
+     .lo = 0, .hi = 1, .def = 0.25, .offset = FLUID(cfl),
+     .doc = "Acoustic CFL number: dt <= cfl h / (c0 + max |u|)"},
+    {.section = SEC_FLUID, .key = "dt_min", .type = VT_NUMBER, .unit = "s", .flags = F_FROM_LO,
+     .lo = 0, .def = 0, .offset = FLUID(dt_min),
+     .doc = "A time step below this stops the run; 0: 1e-6 of the first step"},
+    {.section = SEC_FLUID, .key = "min_pair_distance", .type = VT_NUMBER,
+     .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0.3,
+     .offset = FLUID(min_pair_distance),
+     .doc = "Guard: two particles closer than this times dx stop the run"},
+    {.section = SEC_FLUID, .key = "max_density_error", .type = VT_NUMBER, .flags = F_ABOVE_LO,
+     .lo = 0, .def = 0.1, .offset = FLUID(max_density_error),
+     .doc = "Guard: |rho - rho0| / rho0 above this stops the run"},
     {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
      .doc = "Materials, referred to by name from `geometry`"},
@@ -212,6 +260,9 @@ static const key_spec specs[] = {
     {.section = SEC_GEOMETRY, .key = "temperature", .type = VT_NUMBER, .unit = "K",
      .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = GEO(temperature),
      .doc = "Initial temperature"},
+    {.section = SEC_GEOMETRY, .key = "hydrostatic", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = GEO(hydrostatic),
+     .doc = "Fluid starts in hydrostatic balance below the block's top (against gravity)"},
 };
 /* clang-format on */
 
@@ -885,6 +936,20 @@ static int finish_material(parser *p, const scope *sc)
     return 0;
 }
 
+/* The fluid module's equation of state needs a speed of sound. */
+static int finish_top(parser *p)
+{
+    if (!p->c->fluid.enabled)
+        return 0;
+    for (int i = 0; i < p->c->n_materials; i++)
+        if (p->c->materials[i].sound_speed <= 0)
+            return fail(p, p->material_line[i],
+                        "material '%s' needs 'sound_speed' > 0 for the fluid module (about 10 "
+                        "times the largest expected flow speed)",
+                        p->c->materials[i].name);
+    return 0;
+}
+
 /* Scales the cylinder axis to unit length (without overflow for huge input). */
 static int normalise_axis(parser *p, const scope *sc, double axis[3])
 {
@@ -922,6 +987,9 @@ static int finish_geometry(parser *p, const scope *sc)
 static int finish_scope(parser *p, const scope *sc)
 {
     switch (sc->section) {
+    case SEC_FLUID:
+        p->c->fluid.enabled = 1;
+        return 0;
     case SEC_DOMAIN:
         return check_corners(p, sc, p->c->domain_min, p->c->domain_max);
     case SEC_MATERIAL:
@@ -929,7 +997,7 @@ static int finish_scope(parser *p, const scope *sc)
     case SEC_GEOMETRY:
         return finish_geometry(p, sc);
     case SEC_TOP:
-        break;
+        return finish_top(p);
     }
     return 0;
 }

@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "fluid_options.h"
 #include "kinds.h"
 
 #define AMSPH_MAX_MATERIALS 16
@@ -58,8 +59,26 @@ typedef struct {
     double velocity[3];    /* initial velocity, m/s (default 0) */
     double temperature;    /* initial temperature, K */
     int has_temperature;   /* 1 if `temperature` was given */
+    int hydrostatic;       /* 1: initial density in hydrostatic balance (fluid module) */
     int line;              /* line of the block in the case file, for messages */
 } amsph_geometry;
+
+/* The fluid module (weakly compressible SPH); on when the case has a
+ * `fluid:` section. Choices take the values of kernels/fluid_options.h. */
+typedef struct {
+    int enabled;
+    int density_diffusion;      /* DIFFUSION_*, default DIFFUSION_RUSSELL */
+    double delta;               /* delta-SPH coefficient, default 0.1 */
+    int pressure_gradient;      /* PRESSURE_*, default PRESSURE_RENORMALISED */
+    int viscosity;              /* VISCOSITY_*, default VISCOSITY_LAMINAR */
+    double artificial_alpha;    /* Monaghan alpha, default 0.02 */
+    double background_pressure; /* Pa, default 0 */
+    int wall_slip;              /* WALL_*, default WALL_NO_SLIP */
+    double cfl;                 /* acoustic CFL number, default 0.25 */
+    double dt_min;              /* s: a step below it stops the run; default 0: 1e-6 of the first step */
+    double min_pair_distance;   /* guard: nearest pair below this fraction of dx stops the run, default 0.3 */
+    double max_density_error;   /* guard: |rho - rho0| / rho0 above this stops the run, default 0.1 */
+} amsph_fluid_settings;
 
 typedef struct {
     char path[512];       /* the file it came from (or the name given to the string parser) */
@@ -75,6 +94,7 @@ typedef struct {
     amsph_backend_kind backend; /* default openmp; the CLI's --backend overrides */
     int device;           /* OpenCL device index, default -1 (first); --device overrides */
     double gravity[3];    /* m/s^2, default 0 */
+    amsph_fluid_settings fluid;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];
     int n_geometry;

@@ -77,6 +77,25 @@ int amsph_particles_download(amsph_particles *p, amsph_host_particles *h)
     return 0;
 }
 
+int amsph_particles_copy_output(amsph_particles *dst, const amsph_particles *src)
+{
+    amsph_backend *b = src->backend;
+    dst->backend = b;
+    dst->n = src->n;
+    dst->capacity = src->capacity;
+    dst->removed = src->removed;
+    for (int f = 0; f < AMSPH_FIELD_COUNT; ++f) {
+        if (!src->field[f] || !(amsph_fields[f].flags & AMSPH_FIELD_OUTPUT))
+            continue;
+        const int words = (int)(amsph_field_bytes((amsph_field_id)f) / 4);
+        if (!dst->field[f])
+            AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)src->capacity * (size_t)words * 4, &dst->field[f]));
+        AMSPH_CHECK(AMSPH_LAUNCH(b, "copy_words", src->n * words, amsph_arg_buffer(src->field[f]),
+                                 amsph_arg_buffer(dst->field[f]), amsph_arg_int(src->n * words)));
+    }
+    return 0;
+}
+
 void amsph_particles_free(amsph_particles *p)
 {
     for (int f = 0; f < AMSPH_FIELD_COUNT; ++f)

@@ -26,7 +26,10 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(MATERIAL, "material", AMSPH_TYPE_INT, 1, "1", AMSPH_FIELD_OUTPUT)                            \
     X(ID, "id", AMSPH_TYPE_UINT, 1, "1", AMSPH_FIELD_OUTPUT)                                       \
     X(TEMPERATURE, "temperature", AMSPH_TYPE_REAL, 1, "K", AMSPH_FIELD_OUTPUT)                     \
-    X(LIQUID_FRACTION, "liquid_fraction", AMSPH_TYPE_REAL, 1, "1", AMSPH_FIELD_OUTPUT)
+    X(LIQUID_FRACTION, "liquid_fraction", AMSPH_TYPE_REAL, 1, "1", AMSPH_FIELD_OUTPUT)             \
+    X(DENSITY_RATE, "density_rate", AMSPH_TYPE_REAL, 1, "kg/(m^3 s)", 0)                           \
+    X(SHEPARD, "shepard", AMSPH_TYPE_REAL, 1, "1", 0)                                              \
+    X(WALL_VELOCITY, "wall_velocity", AMSPH_TYPE_REAL, 3, "m/s", 0)
 
 #define AMSPH_FIELD_ENUM(id, name, type, comps, unit, flags) AMSPH_FIELD_##id,
 typedef enum { AMSPH_FIELDS(AMSPH_FIELD_ENUM) AMSPH_FIELD_COUNT } amsph_field_id;
@@ -72,7 +75,11 @@ typedef struct {
 
 /* Uploads a host set (its fields become the present fields). */
 int amsph_particles_upload(amsph_backend *b, const amsph_host_particles *h, amsph_particles *p);
-/* Downloads the present fields into a fresh host set. */
+/* Makes dst a device copy of the output fields of src (same backend);
+ * allocates dst's buffers on first use. */
+int amsph_particles_copy_output(amsph_particles *dst, const amsph_particles *src);
+/* Downloads the present fields into a fresh host set (freed by the caller
+ * with amsph_host_free, also on failure). */
 int amsph_particles_download(amsph_particles *p, amsph_host_particles *h);
 void amsph_particles_free(amsph_particles *p);
 

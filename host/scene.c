@@ -136,6 +136,35 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, amsph_host_
     return 0;
 }
 
+/* Hydrostatic initial density of the block's particles [first, h->n): with
+ * depth d below the block's highest particle (along -g) plus dx/2,
+ *   p = rho0 |g| d,  rho = rho0 + p / c0^2 (the equation of state). */
+static void set_hydrostatic(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h,
+                            int first)
+{
+    const double gnorm = sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
+                              c->gravity[2] * c->gravity[2]);
+    const amsph_material *m = &c->materials[g->material];
+    if (gnorm == 0.0 || m->sound_speed <= 0.0)
+        return;
+    const amsph_real *x = amsph_host_real(h, AMSPH_FIELD_POSITION);
+    double top = -INFINITY;
+    for (int i = first; i < h->n; ++i) {
+        double height = 0.0; /* along -g */
+        for (int d = 0; d < 3; ++d)
+            height -= x[3 * i + d] * c->gravity[d] / gnorm;
+        top = fmax(top, height);
+    }
+    for (int i = first; i < h->n; ++i) {
+        double height = 0.0;
+        for (int d = 0; d < 3; ++d)
+            height -= x[3 * i + d] * c->gravity[d] / gnorm;
+        const double depth = top + 0.5 * c->dx - height;
+        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] =
+            (amsph_real)(m->density + m->density * gnorm * depth / (m->sound_speed * m->sound_speed));
+    }
+}
+
 static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h)
 {
     long long count = 0;
@@ -146,8 +175,12 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
                           c->path, g->line, c->dx);
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
+    const int first = h->n;
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
-    return visit_block(c, g, h, &count);
+    AMSPH_CHECK(visit_block(c, g, h, &count));
+    if (g->hydrostatic)
+        set_hydrostatic(c, g, h, first);
+    return 0;
 }
 
 static int temperature_given(const amsph_case *c)

@@ -1,5 +1,8 @@
 /* A simulation: the case, its particles on a backend, the sorted grid and
- * the time loop assembled from the case's modules. */
+ * the time step assembled from the case's modules:
+ *   no module:   fluid particles fall under gravity (ballistic)
+ *   fluid:       weakly compressible SPH (kernels/fluid.cl) with walls,
+ *                adaptive dt and run guards. */
 #ifndef AMSPH_SIM_H
 #define AMSPH_SIM_H
 
@@ -7,31 +10,43 @@
 #include "case.h"
 #include "grid.h"
 #include "particles.h"
+#define AMSPH_SHARED_REAL amsph_real
+#include "fluid_params.h"
 
 typedef struct {
     amsph_case config;
     amsph_backend *backend; /* not owned */
     amsph_particles particles;
     amsph_grid grid;
-    amsph_buffer *work; /* one real per particle, for reductions */
-    double h;           /* smoothing length, m */
-    double support;     /* kernel support radius, m */
-    double time;        /* s */
-    double dt;          /* last step, s */
+    amsph_buffer *work;      /* one real per particle, for reductions */
+    amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
+    amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
+    fluid_params fluid;
+    double h;       /* smoothing length, m */
+    double support; /* kernel support radius, m */
+    double time;    /* s */
+    double dt;      /* last step, s */
+    double dt_min;  /* a step below this stops the run, s */
+    const char *dt_limit; /* which limit set the last step */
     long long step;
+    /* the last state that passed the guards, kept on the device */
+    amsph_particles last_good;
+    double last_good_time;
+    long long last_good_step;
+    int guard_failed; /* the last step failed a guard (the error says which) */
 } amsph_sim;
 
 /* Kernel support radius / h: 2 (Wendland C2) or 3 (quintic spline). */
 double amsph_support_over_h(amsph_kernel_type kernel);
 
 /* Builds the scene of the case on backend b (kernels built for the case's
- * dimension and smoothing kernel), sorts it and evaluates the initial forces. */
+ * dimension and smoothing kernel), sorts it and evaluates the initial rates. */
 int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s);
 void amsph_sim_free(amsph_sim *s);
 
-/* The step the stability limits allow now, s. */
+/* The step the stability limits allow now, s (sets s->dt_limit). */
 int amsph_sim_stable_dt(amsph_sim *s, double *dt);
-/* Advances by dt (kick-drift-kick). */
+/* Advances by dt (kick-drift-kick), then checks the guards. */
 int amsph_sim_step(amsph_sim *s, double dt);
 
 typedef struct {
@@ -40,7 +55,8 @@ typedef struct {
 } amsph_run_options;
 
 /* Runs to the case's end time, writing snapshots at t = 0, every output
- * interval and at the end, and reporting progress on stderr. */
+ * interval and at the end, and reporting progress on stderr. A failed guard
+ * writes the last good state as a snapshot before returning the error. */
 int amsph_sim_run(amsph_sim *s, const amsph_run_options *options);
 
 #endif

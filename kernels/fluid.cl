@@ -1,5 +1,5 @@
-/* Weakly compressible SPH: equation of state, wall states, Shepard sums,
- * and the pair forces (continuity with delta-SPH, pressure, viscosity).
+/* Weakly compressible SPH: continuity with delta-SPH and Shepard sums,
+ * equation of state, wall states, and the pair forces (pressure, viscosity).
  * Pair loops gather: particle a reads its neighbours b and writes only a. */
 #include "device.h"
 #include "fluid_params.h"
@@ -34,7 +34,9 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
  *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
  *   rho_w = rho0 + (p_w - p_b) / c0^2          (the inverse equation of state)
  *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
- * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity). */
+ * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
+ * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
+ * pressure would glue separating fluid to it and draw particles into it. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        int n, grid_geometry g, GLOBAL const int *cell_start,
@@ -67,7 +69,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
             real p_w = p.background_pressure;
             if (sum_w > REAL(0.0))
-                p_w = (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w;
+                p_w = fmax(p_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
             pressure[a] = p_w;
             density[a] = rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
@@ -75,26 +77,6 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                     sum_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - sum_u[d] / sum_w
                                       : velocity[3 * a + d];
         }
-    }
-}
-
-/* Shepard sum Gamma_a = sum_b W_ab V_b (Russell 2018, below Eq. 3.17). */
-KERNEL void shepard_sum(GLOBAL const real *position, GLOBAL const real *mass,
-                        GLOBAL const real *density, GLOBAL const int *cell, int n, grid_geometry g,
-                        GLOBAL const int *cell_start, real h, GLOBAL real *gamma)
-{
-    FOR_EACH_ITEM(a, n)
-    {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        real sum = REAL(0.0);
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
-        {
-            real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
-            sum += smoothing_w(sqrt(dot3(r_ab, r_ab)), h) * mass[b] / density[b];
-        }
-        gamma[a] = sum;
     }
 }
 
@@ -132,36 +114,90 @@ static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real
     return -p->artificial_alpha * c_mean * p->h * u_dot_r / (rho_mean * (r2 + p->eta2));
 }
 
-/* Rates of the fluid particles: density rate (continuity, Russell 2018
- * Eq. 3.14, with delta-SPH), and acceleration = gravity + pressure
- * gradient + viscosity. Pressure gradient (Russell 2018 Eq. 3.17):
+/* Continuity and Shepard sums, evaluated after the drift with the half-step
+ * velocity, so that the density advances like a position (see
+ * kernels/integrate.cl):
+ *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
+ *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
+ * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
+ * between fluid particles only. closest[a] is the distance to the nearest
+ * other particle, for the guards. Gamma is computed for every particle,
+ * the rates for fluid particles. */
+KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
+                       GLOBAL const real *density, GLOBAL const real *mass,
+                       GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
+                       int n, grid_geometry g, GLOBAL const int *cell_start,
+                       GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
+                       GLOBAL real *gamma, GLOBAL real *closest)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        const int fluid_a = kind[a] == KIND_FLUID;
+        const int mat_a = material[a];
+        const real rho_a = density[a];
+        const real q_a = rho_a - (p.density_diffusion == DIFFUSION_RUSSELL ? reference_density(materials, mat_a) : REAL(0.0));
+        real shepard = REAL(0.0), drho = REAL(0.0), diffusion = REAL(0.0);
+        real nearest = REAL(1e30);
+        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real r2 = dot3(r_ab, r_ab);
+            const real r = sqrt(r2);
+            const real v_b = mass[b] / density[b];
+            shepard += smoothing_w(r, p.h) * v_b;
+            if (fluid_a && b != a && r < SUPPORT_OVER_H * p.h) {
+                nearest = fmin(nearest, r);
+                const real f = smoothing_grad_factor(r, p.h); /* grad_a W_ab = f r_ab */
+                real u_ab[3];
+                for (int d = 0; d < 3; ++d)
+                    u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
+                drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
+                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE) {
+                    const real q_b = density[b] - (p.density_diffusion == DIFFUSION_RUSSELL
+                                                       ? reference_density(materials, material[b])
+                                                       : REAL(0.0));
+                    diffusion += density_diffusion_pair(q_a, q_b, f * r2, r2, v_b, &p);
+                }
+            }
+        }
+        gamma[a] = shepard;
+        density_rate[a] = fluid_a ? drho + p.delta * p.h *
+                                               material_value(materials, mat_a, MATERIAL_SOUND_SPEED) *
+                                               diffusion
+                                  : REAL(0.0);
+        closest[a] = nearest;
+    }
+}
+
+/* Acceleration of the fluid particles: gravity + pressure gradient +
+ * viscosity. Pressure gradient (Russell 2018 Eq. 3.17):
  *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
  *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
- * Walls enter with their Adami state; continuity uses their own velocity,
- * viscosity their ghost velocity (no-slip) or nothing (free-slip).
- * closest[a] is the distance to the nearest other particle, for the guards. */
+ * Walls enter with their Adami state; viscosity sees their ghost velocity
+ * (no-slip) or nothing (free-slip). */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const int *kind,
                          GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *closest)
+                         GLOBAL real *acceleration)
 {
     FOR_EACH_ITEM(a, n)
     {
         real acc[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        real drho = REAL(0.0), diffusion = REAL(0.0);
-        real nearest = REAL(1e30);
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
             const int mat_a = material[a];
             const real rho_a = density[a], p_a = pressure[a];
-            const real rho0_a = reference_density(materials, mat_a);
             const real mu_a = material_value(materials, mat_a, MATERIAL_VISCOSITY);
             const real c_a = material_value(materials, mat_a, MATERIAL_SOUND_SPEED);
-            const real gamma_a = p.pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
+            const int renormalised = p.pressure_gradient == PRESSURE_RENORMALISED;
+            const real gamma_a = renormalised ? gamma[a] : REAL(1.0);
             FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
             {
                 real r_ab[3];
@@ -169,53 +205,37 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                 const real r2 = dot3(r_ab, r_ab);
                 if (b == a || r2 >= SUPPORT_OVER_H * SUPPORT_OVER_H * p.h * p.h)
                     continue;
-                nearest = fmin(nearest, sqrt(r2));
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
-                const real r_dot_grad = f * r2;
                 const int fluid_b = kind[b] == KIND_FLUID;
                 const int mat_b = material[b];
-                const real rho_b = density[b], m_b = mass[b], v_b = m_b / rho_b;
-                real u_ab[3], u_visc[3];
-                for (int d = 0; d < 3; ++d) {
-                    u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
-                    u_visc[d] = fluid_b ? u_ab[d] : velocity[3 * a + d] - wall_velocity[3 * b + d];
-                }
-                /* continuity: rho_a sum_b u_ab . grad_a W_ab V_b */
-                drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
-                if (fluid_b && p.density_diffusion != DIFFUSION_NONE) {
-                    const real shift_a = p.density_diffusion == DIFFUSION_RUSSELL ? rho0_a : REAL(0.0);
-                    const real shift_b = p.density_diffusion == DIFFUSION_RUSSELL
-                                             ? reference_density(materials, mat_b)
-                                             : REAL(0.0);
-                    diffusion += density_diffusion_pair(rho_a - shift_a, rho_b - shift_b, r_dot_grad,
-                                                        r2, v_b, &p);
-                }
-                /* pressure gradient */
-                const real gamma_b = p.pressure_gradient == PRESSURE_RENORMALISED ? gamma[b] : REAL(1.0);
-                const real pressure_term = -m_b / (rho_a * rho_b) * (pressure[b] / gamma_a + p_a / gamma_b) * f;
-                /* viscosity */
+                const real rho_b = density[b], m_b = mass[b];
+                const real gamma_b = renormalised ? gamma[b] : REAL(1.0);
+                const real pressure_term =
+                    -m_b / (rho_a * rho_b) * (pressure[b] / gamma_a + p_a / gamma_b) * f;
+                real u_visc[3];
+                for (int d = 0; d < 3; ++d)
+                    u_visc[d] = velocity[3 * a + d] -
+                                (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);
                 real visc_scalar = REAL(0.0); /* multiplies u_visc */
                 real visc_radial = REAL(0.0); /* multiplies r_ab */
                 if (fluid_b || p.wall_slip == WALL_NO_SLIP) {
                     if (p.viscosity == VISCOSITY_LAMINAR) {
                         const real mu_b = material_value(materials, mat_b, MATERIAL_VISCOSITY);
-                        visc_scalar = laminar_viscosity_factor(mu_a, mu_b, m_b, rho_a, rho_b, r_dot_grad, r2, &p);
+                        visc_scalar = laminar_viscosity_factor(mu_a, mu_b, m_b, rho_a, rho_b, f * r2, r2, &p);
                     } else {
                         const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
-                        visc_radial = -m_b * f * artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (c_a + c_b),
-                                                                      REAL(0.5) * (rho_a + rho_b), &p);
+                        visc_radial = -m_b * f *
+                                      artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (c_a + c_b),
+                                                           REAL(0.5) * (rho_a + rho_b), &p);
                     }
                 }
                 for (int d = 0; d < 3; ++d)
                     acc[d] += (pressure_term + visc_radial) * r_ab[d] + visc_scalar * u_visc[d];
             }
-            drho += p.delta * p.h * c_a * diffusion;
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];
         }
         for (int d = 0; d < 3; ++d)
             acceleration[3 * a + d] = acc[d];
-        density_rate[a] = drho;
-        closest[a] = nearest;
     }
 }

@@ -7,18 +7,7 @@
 #define AMSPH_SHARED_REAL real
 #endif
 
-#define DIFFUSION_NONE 0
-#define DIFFUSION_MOLTENI 1 /* diffuses rho (Molteni & Colagrossi 2009) */
-#define DIFFUSION_RUSSELL 2 /* diffuses rho - rho0 (Russell 2018 Eq. 3.53) */
-
-#define PRESSURE_RENORMALISED 0 /* Russell 2018 Eq. 3.17 */
-#define PRESSURE_SYMMETRIC 1
-
-#define VISCOSITY_LAMINAR 0    /* Morris et al. 1997, harmonic-mean viscosity */
-#define VISCOSITY_ARTIFICIAL 1 /* Monaghan 1992 */
-
-#define WALL_NO_SLIP 0
-#define WALL_FREE_SLIP 1
+#include "fluid_options.h"
 
 typedef struct {
     AMSPH_SHARED_REAL h;                   /* smoothing length, m */

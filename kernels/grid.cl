@@ -15,6 +15,11 @@ KERNEL void fill_words(GLOBAL uint *buffer, int n, uint value)
     FOR_EACH_ITEM(i, n) { buffer[i] = value; }
 }
 
+KERNEL void copy_words(GLOBAL const uint *src, GLOBAL uint *dst, int n)
+{
+    FOR_EACH_ITEM(i, n) { dst[i] = src[i]; }
+}
+
 /* Axis cell of coordinate x, or -1 outside [lo, lo + length] (NaN included). */
 static inline int grid_axis_cell(const grid_geometry *g, int d, real x)
 {

@@ -1,9 +1,14 @@
 /* Time integration: kick-drift-kick leap-frog (Russell 2018 Eq. 3.55 in
- * its velocity-Verlet form; second order, one force evaluation per step):
- *   u^{n+1/2} = u^n + a^n dt/2,         rho^{n+1/2} = rho^n + (drho/dt)^n dt/2
+ * its velocity-Verlet form, one force evaluation per step), in which the
+ * density advances with the positions:
+ *   u^{n+1/2} = u^n + a^n dt/2
  *   r^{n+1}   = r^n + u^{n+1/2} dt
- *   u^{n+1}   = u^{n+1/2} + a^{n+1} dt/2, rho^{n+1} = rho^{n+1/2} + (drho/dt)^{n+1} dt/2
- * with the rates at n+1 evaluated from r^{n+1}, u^{n+1/2}, rho^{n+1/2}.
+ *   rho^{n+1} = rho^n + dt drho/dt(r^{n+1}, u^{n+1/2})
+ *   u^{n+1}   = u^{n+1/2} + a^{n+1} dt/2,  a^{n+1} from r^{n+1}, rho^{n+1}, u^{n+1/2}.
+ * Kicking the density with the velocity instead (rho^{n+1/2} = rho^n +
+ * dt/2 drho/dt^n, ...) is unconditionally unstable for the acoustic
+ * oscillator u' = -a rho, rho' = b u: its amplification matrix has
+ * determinant 1 + (omega dt)^2 / 2 + (omega dt)^4 / 16 > 1.
  * Fluid particles are kicked; walls and fixed solids keep their velocity
  * (a moving wall drifts at it) and take their density from the fluid. */
 #include "device.h"
@@ -34,13 +39,13 @@ KERNEL void kick(GLOBAL const int *kind, GLOBAL const real *acceleration, int n,
     }
 }
 
-KERNEL void kick_density(GLOBAL const int *kind, GLOBAL const real *density_rate, int n,
-                         real half_dt, GLOBAL real *density)
+KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, int n,
+                            real dt, GLOBAL real *density)
 {
     FOR_EACH_ITEM(i, n)
     {
         if (kind[i] == KIND_FLUID)
-            density[i] += half_dt * density_rate[i];
+            density[i] += dt * density_rate[i];
     }
 }
 

@@ -107,7 +107,7 @@ static const bad_case bad_cases[] = {
      NAME ":17: unknown key 'end_tme' in top level; did you mean 'end_time'?"},
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
-          "kernel, end_time, output_interval, backend, device, gravity, materials, geometry)"},
+          "kernel, end_time, output_interval, backend, device, gravity, fluid, materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -120,7 +120,7 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, materials, geometry)"},
+          "backend, device, gravity, fluid, materials, geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
     {"duplicate key", BASE2 "dx: 0.02\n",

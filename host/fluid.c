@@ -1,0 +1,121 @@
+#include "fluid.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+
+int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
+{
+    const amsph_fluid_settings *f = &s->config.fluid;
+    fluid_params *p = &s->fluid;
+    memset(p, 0, sizeof *p);
+    p->h = (amsph_real)s->h;
+    p->eta2 = (amsph_real)(0.01 * s->h * s->h);
+    p->delta = (amsph_real)(f->density_diffusion == DIFFUSION_NONE ? 0.0 : f->delta);
+    p->background_pressure = (amsph_real)f->background_pressure;
+    p->artificial_alpha = (amsph_real)f->artificial_alpha;
+    for (int d = 0; d < 3; ++d)
+        p->gravity[d] = (amsph_real)s->config.gravity[d];
+    p->density_diffusion = f->density_diffusion;
+    p->pressure_gradient = f->pressure_gradient;
+    p->viscosity = f->viscosity;
+    p->wall_slip = f->wall_slip;
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
+    /* the equation of state of the initial density: p = p_b */
+    amsph_real *pressure = amsph_host_real(h, AMSPH_FIELD_PRESSURE);
+    for (int i = 0; i < h->n; ++i)
+        pressure[i] = p->background_pressure;
+    return 0;
+}
+
+static amsph_arg field(amsph_sim *s, amsph_field_id f)
+{
+    return amsph_arg_buffer(s->particles.field[f]);
+}
+
+int amsph_fluid_density(amsph_sim *s, double dt)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
+                             amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
+                             amsph_arg_bytes(&s->fluid, sizeof s->fluid),
+                             field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
+                             amsph_arg_buffer(s->closest)));
+    return AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
+                        field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_int(n), amsph_arg_real(dt),
+                        field(s, AMSPH_FIELD_DENSITY));
+}
+
+int amsph_fluid_forces(amsph_sim *s)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
+    const amsph_arg params = amsph_arg_bytes(&s->fluid, sizeof s->fluid);
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "equation_of_state", n, field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_DENSITY),
+                             amsph_arg_int(n), amsph_arg_buffer(s->materials), params,
+                             field(s, AMSPH_FIELD_PRESSURE)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "wall_state", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
+                             amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
+                             amsph_arg_buffer(s->materials), params, field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
+    return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
+                        field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
+                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
+                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                        amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
+                        amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
+                        field(s, AMSPH_FIELD_ACCELERATION));
+}
+
+/* Largest speed of sound and kinematic viscosity over the materials. */
+static void material_extremes(const amsph_case *c, double *c0, double *nu)
+{
+    *c0 = 0.0;
+    *nu = 0.0;
+    for (int m = 0; m < c->n_materials; ++m) {
+        *c0 = fmax(*c0, c->materials[m].sound_speed);
+        *nu = fmax(*nu, c->materials[m].viscosity / c->materials[m].density);
+    }
+}
+
+static void lower(double *dt, const char **limit, double candidate, const char *name)
+{
+    if (candidate < *dt) {
+        *dt = candidate;
+        *limit = name;
+    }
+}
+
+int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
+{
+    amsph_particles *p = &s->particles;
+    double umax = 0.0, amax = 0.0, c0, nu;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
+                             amsph_arg_int(p->n), amsph_arg_buffer(s->work)));
+    AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &umax));
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n,
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]), amsph_arg_int(p->n),
+                             amsph_arg_buffer(s->work)));
+    AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &amax));
+    material_extremes(&s->config, &c0, &nu);
+    const double h = s->h;
+    lower(dt, limit, s->config.fluid.cfl * h / (c0 + umax), "acoustic");
+    if (nu > 0.0)
+        lower(dt, limit, 0.125 * h * h / nu, "viscous");
+    if (amax > 0.0)
+        lower(dt, limit, 0.25 * sqrt(h / amax), "force");
+    return 0;
+}

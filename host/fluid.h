@@ -1,0 +1,20 @@
+/* Host side of the fluid module: settings for the kernels, the pass
+ * sequence that evaluates the rates, and the module's time-step limits. */
+#ifndef AMSPH_FLUID_H
+#define AMSPH_FLUID_H
+
+#include "sim.h"
+
+/* Fills s->fluid from the case and adds the module's fields. */
+int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h);
+/* After the drift: continuity (with the half-step velocity) and Shepard
+ * sums, then rho += dt drho/dt for fluid particles (dt = 0 at the start). */
+int amsph_fluid_density(amsph_sim *s, double dt);
+/* Equation of state, wall states, then the acceleration of every fluid
+ * particle. */
+int amsph_fluid_forces(amsph_sim *s);
+/* Lowers *dt to the acoustic, viscous and force limits (Fuchs et al. 2022
+ * Eq. 42), naming the one that binds in *limit. */
+int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit);
+
+#endif

@@ -1,0 +1,81 @@
+#include "guards.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "error.h"
+
+/* Codes of kernels/guards.cl */
+enum { GUARD_OK, GUARD_DENSITY, GUARD_CLOSE, GUARD_NOT_FINITE };
+
+/* One particle's value of a field, downloaded. */
+static int fetch(amsph_sim *s, amsph_field_id f, int i, void *out)
+{
+    const size_t bytes = amsph_field_bytes(f);
+    return amsph_download(s->backend, s->particles.field[f], (size_t)i * bytes, bytes, out);
+}
+
+static int first_with_code(amsph_sim *s, int code, int *index)
+{
+    const int n = s->particles.n;
+    amsph_real *codes = malloc((size_t)n * sizeof *codes);
+    if (!codes)
+        return amsph_fail("out of host memory reading the guard codes");
+    int status = amsph_download(s->backend, s->work, 0, (size_t)n * sizeof *codes, codes);
+    *index = 0;
+    while (!status && *index < n && (int)codes[*index] != code)
+        ++*index;
+    free(codes);
+    return status;
+}
+
+static int report(amsph_sim *s, int code, int i)
+{
+    amsph_real x[3], rho, nearest;
+    unsigned id;
+    int material;
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_POSITION, i, x));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_DENSITY, i, &rho));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_ID, i, &id));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_MATERIAL, i, &material));
+    AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof nearest, sizeof nearest, &nearest));
+    const amsph_fluid_settings *f = &s->config.fluid;
+    const double dx = s->config.dx;
+    char where[160];
+    snprintf(where, sizeof where, "step %lld, t = %.6g s: particle id %u at (%.6g, %.6g, %.6g) m", s->step,
+             s->time, id, (double)x[0], (double)x[1], (double)x[2]);
+    if (code == GUARD_NOT_FINITE)
+        return amsph_fail("guard 'finite values' failed: %s has a non-finite position, velocity "
+                          "or density; reduce cfl or check the case's forces",
+                          where);
+    if (code == GUARD_CLOSE)
+        return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest "
+                          "neighbour (limit %.3g dx)",
+                          where, (double)nearest / dx, f->min_pair_distance);
+    const double rho0 = s->config.materials[material].density;
+    return amsph_fail("guard 'density error' failed: %s has density %.6g kg/m^3, %.3g%% from "
+                      "rho0 = %.6g (limit %.3g%%); raise sound_speed or max_density_error",
+                      where, (double)rho, 100.0 * ((double)rho - rho0) / rho0, rho0,
+                      100.0 * f->max_density_error);
+}
+
+int amsph_guards_check(amsph_sim *s)
+{
+    amsph_particles *p = &s->particles;
+    const amsph_fluid_settings *f = &s->config.fluid;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "guard_check", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_MATERIAL]), amsph_arg_buffer(s->closest),
+                             amsph_arg_int(p->n), amsph_arg_buffer(s->materials),
+                             amsph_arg_real(f->min_pair_distance * s->config.dx),
+                             amsph_arg_real(f->max_density_error), amsph_arg_buffer(s->work)));
+    double worst = 0.0;
+    AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &worst));
+    if (worst == GUARD_OK)
+        return 0;
+    int i = 0;
+    AMSPH_CHECK(first_with_code(s, (int)worst, &i));
+    return report(s, (int)worst, i);
+}

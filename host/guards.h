@@ -1,0 +1,12 @@
+/* Run guards (fluid module): non-finite values, particle pairs closer than
+ * a fraction of dx, density error out of bounds. */
+#ifndef AMSPH_GUARDS_H
+#define AMSPH_GUARDS_H
+
+#include "sim.h"
+
+/* Returns 0, or fails with a message naming the check, the step and time,
+ * and the first offending particle's id and position. */
+int amsph_guards_check(amsph_sim *s);
+
+#endif
