@@ -65,14 +65,22 @@ static void report_progress(progress *pr, const amsph_sim *s, int final)
     fflush(stderr);
 }
 
-static int advance_to(amsph_sim *s, double target, progress *pr)
+static void after_step(void *context, const amsph_sim *s)
+{
+    progress *pr = context;
+    pr->particle_steps += s->particles.n;
+    report_progress(pr, s, 0);
+}
+
+int amsph_sim_advance(amsph_sim *s, double target, void (*each_step)(void *, const amsph_sim *),
+                      void *context)
 {
     while (s->time < target * (1.0 - 1e-12)) {
         double dt = 0.0;
         AMSPH_CHECK(amsph_sim_stable_dt(s, &dt));
         AMSPH_CHECK(amsph_sim_step(s, fmin(dt, target - s->time)));
-        pr->particle_steps += s->particles.n;
-        report_progress(pr, s, 0);
+        if (each_step)
+            each_step(context, s);
     }
     s->time = target; /* land exactly on output times */
     return 0;
@@ -88,7 +96,7 @@ int amsph_sim_run(amsph_sim *s, const amsph_run_options *options)
     const double interval = s->config.output_interval;
     int status = write_snapshot(&s->particles, &out, s->time, s->step);
     for (long long k = 1; !status && s->time < end * (1.0 - 1e-12); ++k) {
-        status = advance_to(s, fmin(end, (double)k * interval), &pr);
+        status = amsph_sim_advance(s, fmin(end, (double)k * interval), after_step, &pr);
         if (!status)
             status = write_snapshot(&s->particles, &out, s->time, s->step);
     }

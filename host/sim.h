@@ -49,6 +49,11 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt);
 /* Advances by dt (kick-drift-kick), then checks the guards. */
 int amsph_sim_step(amsph_sim *s, double dt);
 
+/* Steps with the stable dt until exactly `target` (s); each_step (may be
+ * NULL) is called after every step. */
+int amsph_sim_advance(amsph_sim *s, double target, void (*each_step)(void *context, const amsph_sim *s),
+                      void *context);
+
 typedef struct {
     const char *outdir;
     int quiet;
