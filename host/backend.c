@@ -54,8 +54,7 @@ void amsph_backend_destroy(amsph_backend *b)
 {
     if (!b)
         return;
-    if (b->reduce_partial)
-        b->iface->free(b, b->reduce_partial);
+    amsph_buffer_free(b, b->reduce_partial);
     b->iface->destroy(b);
 }
 
@@ -94,13 +93,17 @@ amsph_arg amsph_arg_real(double v)
 
 int amsph_buffer_alloc(amsph_backend *b, size_t bytes, amsph_buffer **out)
 {
-    return b->iface->alloc(b, bytes ? bytes : 1, out);
+    AMSPH_CHECK(b->iface->alloc(b, bytes ? bytes : 1, out));
+    b->allocated += b->iface->size(b, *out);
+    return 0;
 }
 
 void amsph_buffer_free(amsph_backend *b, amsph_buffer *buffer)
 {
-    if (buffer)
-        b->iface->free(b, buffer);
+    if (!buffer)
+        return;
+    b->allocated -= b->iface->size(b, buffer);
+    b->iface->free(b, buffer);
 }
 
 int amsph_upload(amsph_backend *b, amsph_buffer *buf, size_t offset, size_t bytes, const void *src)

@@ -40,6 +40,7 @@ typedef struct {
     const char *name;
     int (*alloc)(amsph_backend *, size_t bytes, amsph_buffer **out);
     void (*free)(amsph_backend *, amsph_buffer *);
+    size_t (*size)(amsph_backend *, amsph_buffer *);
     int (*upload)(amsph_backend *, amsph_buffer *, size_t offset, size_t bytes, const void *src);
     int (*download)(amsph_backend *, amsph_buffer *, size_t offset, size_t bytes, void *dst);
     int (*build)(amsph_backend *, const amsph_build_options *);
@@ -53,6 +54,7 @@ struct amsph_backend {
     void *impl;
     char description[256]; /* device and platform, for logs and benchmarks */
     amsph_buffer *reduce_partial; /* scratch of the two-stage reductions */
+    size_t allocated;             /* bytes in live buffers */
 };
 
 /* Creates the backend named "openmp" or "opencl"; device < 0 picks the

@@ -112,6 +112,14 @@ static void opencl_free(amsph_backend *b, amsph_buffer *buf)
     free(buf);
 }
 
+static size_t opencl_size(amsph_backend *b, amsph_buffer *buf)
+{
+    (void)b;
+    size_t bytes = 0;
+    clGetMemObjectInfo(buf->mem, CL_MEM_SIZE, sizeof bytes, &bytes, NULL);
+    return bytes;
+}
+
 static int opencl_upload(amsph_backend *b, amsph_buffer *buf, size_t offset, size_t bytes,
                          const void *src)
 {
@@ -232,7 +240,7 @@ static void opencl_destroy(amsph_backend *b)
 }
 
 static const amsph_backend_iface opencl_iface = {
-    "opencl",     opencl_alloc, opencl_free,   opencl_upload, opencl_download,
+    "opencl",     opencl_alloc, opencl_free,   opencl_size, opencl_upload, opencl_download,
     opencl_build, opencl_launch, opencl_sync, opencl_destroy};
 
 int amsph_backend_opencl_create(int device, amsph_backend **out)

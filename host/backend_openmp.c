@@ -43,6 +43,12 @@ static void openmp_free(amsph_backend *b, amsph_buffer *buf)
     free(buf);
 }
 
+static size_t openmp_size(amsph_backend *b, amsph_buffer *buf)
+{
+    (void)b;
+    return buf->bytes;
+}
+
 static int check_range(const amsph_buffer *buf, size_t offset, size_t bytes)
 {
     if (offset > buf->bytes || bytes > buf->bytes - offset)
@@ -117,7 +123,7 @@ static void openmp_destroy(amsph_backend *b)
 }
 
 static const amsph_backend_iface openmp_iface = {
-    "openmp",     openmp_alloc, openmp_free,   openmp_upload, openmp_download,
+    "openmp",     openmp_alloc, openmp_free,   openmp_size, openmp_upload, openmp_download,
     openmp_build, openmp_launch, openmp_sync, openmp_destroy};
 
 int amsph_backend_openmp_create(amsph_backend **out)

@@ -139,7 +139,8 @@ static int command_run(const cli_options *o)
     status = amsph_sim_create(&c, b, &sim);
     if (!status) {
         if (!o->quiet)
-            fprintf(stderr, "amsph: %d particles, h = %g m\n", sim.particles.n, sim.h);
+            fprintf(stderr, "amsph: %d particles, h = %g m, %.0f device bytes per particle\n",
+                    sim.particles.n, sim.h, (double)b->allocated / sim.particles.n);
         status = amsph_sim_run(&sim, &run);
     }
     if (status)

@@ -263,8 +263,52 @@ static void test_guard_stops_run(void)
     amsph_backend_destroy(b);
 }
 
+/* Free-slip walls exert no shear: the body-force driven channel then
+ * accelerates as a plug, u = F t everywhere. */
+static void test_free_slip(void)
+{
+    amsph_case c;
+    if (load("poiseuille_2d.yaml", &c))
+        return;
+    c.fluid.wall_slip = WALL_FREE_SLIP;
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    const double t = 0.05, plug = c.gravity[0] * t;
+    CHECK_OK(amsph_sim_advance(&s, t, NULL, NULL));
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    double worst = 0.0;
+    for (int i = 0; i < h.n; ++i)
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID)
+            worst = fmax(worst, fabs(amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i] - plug));
+    CHECK(worst < 1e-3 * plug, "free slip: velocity differs from the plug F t = %g by %g", plug, worst);
+    amsph_host_free(&h);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
+/* A time step below dt_min stops the run with a message naming the limit. */
+static void test_dt_floor(void)
+{
+    amsph_case c;
+    if (load("couette_2d.yaml", &c))
+        return;
+    c.fluid.dt_min = 1.0; /* far above the viscous step of ~3e-4 s */
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK(amsph_sim_advance(&s, 0.01, NULL, NULL) != 0, "a step below dt_min was taken");
+    CHECK(strstr(amsph_last_error(), "fell below dt_min") && strstr(amsph_last_error(), "viscous limit"),
+          "message: %s", amsph_last_error());
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 int main(void)
 {
+    test_free_slip();
+    test_dt_floor();
     test_density_diffusion();
     test_guard_stops_run();
     test_channels();

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Convergence study of a validation case: runs amsph at several particle
+spacings and prints a Markdown table of particles, steps, wall time,
+particle-steps per second, error against the known answer and observed order.
+
+    tools/convergence.py CASE DX [DX ...] [--amsph build/amsph] [--backend openmp]
+
+CASE is one of: poiseuille, couette (L2 velocity error relative to the peak
+speed, largest over the output times; Morris, Fox & Zhu 1997) and dambreak,
+dambreak_3d (largest drift of the fluid volume sum m/rho).
+Needs numpy and h5py (Debian: python3-numpy python3-h5py)."""
+import argparse, glob, math, os, re, subprocess, tempfile, time
+
+import h5py
+import numpy as np
+
+L, NU = 1e-3, 1e-6
+
+
+def poiseuille(y, t, F=2e-4):
+    u = F / (2 * NU) * y * (L - y)
+    for n in range(200):
+        k = 2 * n + 1
+        u -= 4 * F * L * L / (NU * math.pi**3 * k**3) * np.sin(k * math.pi * y / L) * \
+            math.exp(-k * k * math.pi**2 * NU * t / L**2)
+    return u
+
+
+def couette(y, t, V=2.5e-5):
+    u = V * y / L
+    for n in range(1, 400):
+        u += 2 * V * (-1)**n / (n * math.pi) * np.sin(n * math.pi * y / L) * \
+            math.exp(-n * n * math.pi**2 * NU * t / L**2)
+    return u
+
+
+def snapshots(outdir):
+    for name in sorted(glob.glob(os.path.join(outdir, "snap_*.h5"))):
+        with h5py.File(name) as f:
+            yield f.attrs["time"], {k: f[k][:] for k in f.keys()}
+
+
+def channel_error(outdir, exact, scale):
+    worst = 0.0
+    for t, s in snapshots(outdir):
+        if t == 0:  # the series is exact there only in the limit of infinitely many terms
+            continue
+        fluid = s["kind"] == 0
+        e = s["velocity"][fluid, 0] - exact(s["position"][fluid, 1], t)
+        worst = max(worst, math.sqrt(np.mean(e * e)) / scale)
+    return worst
+
+
+def volume_drift(outdir):
+    volumes = []
+    for _, s in snapshots(outdir):
+        fluid = s["kind"] == 0
+        volumes.append(np.sum(s["mass"][fluid] / s["density"][fluid]))
+    return max(abs(v / volumes[0] - 1) for v in volumes)
+
+
+CASES = {
+    "poiseuille": ("cases/validation/poiseuille_2d.yaml", lambda d: channel_error(d, poiseuille, 2.5e-5)),
+    "couette": ("cases/validation/couette_2d.yaml", lambda d: channel_error(d, couette, 2.5e-5)),
+    "dambreak": ("cases/validation/dambreak_2d.yaml", volume_drift),
+    "dambreak_3d": ("cases/validation/dambreak_3d.yaml", volume_drift),
+}
+
+
+def run(amsph, case_text, dx, backend, work):
+    path = os.path.join(work, f"case_{dx}.yaml")
+    with open(path, "w") as f:
+        f.write(re.sub(r"^dx: .*$", f"dx: {dx}", case_text, flags=re.M))
+    outdir = os.path.join(work, f"out_{dx}")
+    start = time.monotonic()
+    proc = subprocess.run([amsph, "run", path, "-o", outdir, "--backend", backend],
+                          capture_output=True, text=True)
+    wall = time.monotonic() - start
+    if proc.returncode != 0:
+        raise SystemExit(f"dx {dx}: amsph failed:\n{proc.stderr}")
+    particles = int(re.search(r"(\d+) particles", proc.stderr).group(1))
+    steps = int(re.search(r"done, (\d+) steps", proc.stderr).group(1))
+    return outdir, particles, steps, wall
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case", choices=sorted(CASES))
+    ap.add_argument("dx", type=float, nargs="+")
+    ap.add_argument("--amsph", default="build/amsph")
+    ap.add_argument("--backend", default="openmp", choices=["openmp", "opencl"])
+    args = ap.parse_args()
+    case_file, measure = CASES[args.case]
+    with open(case_file) as f:
+        text = f.read()
+    print(f"| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |")
+    print(f"|---|---|---|---|---|---|---|---|---|")
+    previous = None
+    with tempfile.TemporaryDirectory() as work:
+        for dx in sorted(args.dx, reverse=True):
+            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work)
+            error = measure(outdir)
+            order = ""
+            if previous and error > 0 and previous[1] > 0:
+                order = f"{math.log(previous[1] / error) / math.log(previous[0] / dx):.2f}"
+            print(f"| {args.case} | {args.backend} | {dx:g} | {particles} | {steps} | {wall:.1f} | "
+                  f"{particles * steps / wall:.3g} | {error:.3e} | {order} |", flush=True)
+            previous = (dx, error)
+
+
+if __name__ == "__main__":
+    main()
