@@ -192,6 +192,10 @@ static const key_spec specs[] = {
      .doc = "Monaghan's alpha for `viscosity: artificial`"},
     {.section = SEC_FLUID, .key = "background_pressure", .type = VT_NUMBER, .unit = "Pa",
      .def = 0, .offset = FLUID(background_pressure), .doc = "Pressure added to the equation of state"},
+    {.section = SEC_FLUID, .key = "clamp_negative_pressure", .type = VT_CHOICE,
+     .choices = bool_choices, .def = 0, .offset = FLUID(clamp_negative_pressure),
+     .doc = "Fluid pressure below the background pressure is raised to it (no tension: "
+            "suppresses the tensile instability of free-surface flows)"},
     {.section = SEC_FLUID, .key = "wall_slip", .type = VT_CHOICE, .choices = slip_choices,
      .def = WALL_NO_SLIP, .offset = FLUID(wall_slip), .doc = "Wall condition for the velocity"},
     {.section = SEC_FLUID, .key = "cfl", .type = VT_NUMBER, .flags = F_ABOVE_LO | F_UP_TO_HI,

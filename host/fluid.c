@@ -21,6 +21,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->pressure_gradient = f->pressure_gradient;
     p->viscosity = f->viscosity;
     p->wall_slip = f->wall_slip;
+    p->clamp_negative_pressure = f->clamp_negative_pressure;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));

@@ -14,7 +14,8 @@ static inline real dot3(const real a[3], const real b[3])
 }
 
 /* p = c0^2 (rho - rho0) + p_b for fluid particles (Russell 2018 Eq. 3.52;
- * rho0 comes through reference_density, the hook for rho0(T)). */
+ * rho0 comes through reference_density, the hook for rho0(T)); optionally
+ * no lower than p_b, for free-surface flows without tension. */
 KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material,
                               GLOBAL const real *density, int n, GLOBAL const real *materials,
                               fluid_params p, GLOBAL real *pressure)
@@ -23,8 +24,9 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
     {
         if (kind[a] == KIND_FLUID) {
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
-            pressure[a] = c0 * c0 * (density[a] - reference_density(materials, material[a])) +
-                          p.background_pressure;
+            const real pressure_a = c0 * c0 * (density[a] - reference_density(materials, material[a])) +
+                                    p.background_pressure;
+            pressure[a] = p.clamp_negative_pressure ? fmax(pressure_a, p.background_pressure) : pressure_a;
         }
     }
 }

@@ -20,6 +20,7 @@ typedef struct {
     int pressure_gradient;                 /* PRESSURE_* */
     int viscosity;                         /* VISCOSITY_* */
     int wall_slip;                         /* WALL_* */
+    int clamp_negative_pressure;           /* 1: p >= background pressure */
 } fluid_params;
 
 #endif

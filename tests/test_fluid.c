@@ -305,8 +305,45 @@ static void test_dt_floor(void)
     amsph_backend_destroy(b);
 }
 
+/* With clamp_negative_pressure a fluid under tension (rho < rho0) has the
+ * background pressure; without, the equation of state's negative one. */
+static void test_pressure_clamp(void)
+{
+    for (int clamp = 0; clamp <= 1; ++clamp) {
+        amsph_case c;
+        if (load("couette_2d.yaml", &c))
+            return;
+        c.fluid.clamp_negative_pressure = clamp;
+        c.fluid.background_pressure = 5.0;
+        c.materials[0].sound_speed = 10.0; /* p = 5 - 100 Pa at rho = rho0 - 1 */
+        amsph_backend *b = testing_backend(0);
+        amsph_sim s;
+        CHECK_OK(amsph_sim_create(&c, b, &s));
+        amsph_host_particles h;
+        CHECK_OK(amsph_particles_download(&s.particles, &h));
+        for (int i = 0; i < h.n; ++i)
+            amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)999.0;
+        amsph_particles_free(&s.particles);
+        CHECK_OK(amsph_particles_upload(b, &h, &s.particles));
+        CHECK_OK(amsph_fluid_forces(&s));
+        amsph_host_free(&h);
+        CHECK_OK(amsph_particles_download(&s.particles, &h));
+        const double c0 = c.materials[0].sound_speed;
+        const double expected = clamp ? 5.0 : 5.0 - c0 * c0 * 1.0;
+        double worst = 0.0;
+        for (int i = 0; i < h.n; ++i)
+            if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID)
+                worst = fmax(worst, fabs(amsph_host_real(&h, AMSPH_FIELD_PRESSURE)[i] - expected));
+        CHECK(worst < 1e-3, "clamp %d: pressure off the expected %g by %g", clamp, expected, worst);
+        amsph_host_free(&h);
+        amsph_sim_free(&s);
+        amsph_backend_destroy(b);
+    }
+}
+
 int main(void)
 {
+    test_pressure_clamp();
     test_free_slip();
     test_dt_floor();
     test_density_diffusion();
