@@ -138,7 +138,8 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, amsph_host_
 
 /* Hydrostatic initial density of the block's particles [first, h->n): with
  * depth d below the block's highest particle (along -g) plus dx/2,
- *   p = rho0 |g| d,  rho = rho0 + p / c0^2 (the equation of state). */
+ *   p = rho0 |g| d,  rho = rho0 + p / c0^2 (the equation of state),
+ * and mass rho dx^d, so that the particle volume m / rho stays dx^d. */
 static void set_hydrostatic(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h,
                             int first)
 {
@@ -160,8 +161,10 @@ static void set_hydrostatic(const amsph_case *c, const amsph_geometry *g, amsph_
         for (int d = 0; d < 3; ++d)
             height -= x[3 * i + d] * c->gravity[d] / gnorm;
         const double depth = top + 0.5 * c->dx - height;
-        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] =
-            (amsph_real)(m->density + m->density * gnorm * depth / (m->sound_speed * m->sound_speed));
+        const double rho = m->density + m->density * gnorm * depth / (m->sound_speed * m->sound_speed);
+        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)rho;
+        /* the lattice volume dx^d holds the compressed fluid: m = rho dx^d */
+        amsph_host_real(h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho * pow(c->dx, c->dim));
     }
 }
 

@@ -83,7 +83,9 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
 }
 
 /* delta-SPH density diffusion of one pair, as a Laplacian of the diffused
- * quantity q (rho, or rho - rho0 after Russell 2018 Eq. 3.53):
+ * quantity q (rho; rho - rho0 after Russell 2018 Eq. 3.53; or rho - rho0
+ * less the hydrostatic density after Fourtakas et al. 2019, which leaves a
+ * fluid at rest under gravity untouched):
  *   D_a = delta h c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
  * the Molteni & Colagrossi (2009) form without Antuono's correction term;
  * it decays a perturbation of q (tested). */
@@ -139,7 +141,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         const int fluid_a = kind[a] == KIND_FLUID;
         const int mat_a = material[a];
         const real rho_a = density[a];
-        const real q_a = rho_a - (p.density_diffusion == DIFFUSION_RUSSELL ? reference_density(materials, mat_a) : REAL(0.0));
+        const int shifted = p.density_diffusion == DIFFUSION_RUSSELL || p.density_diffusion == DIFFUSION_FOURTAKAS;
+        const real q_a = rho_a - (shifted ? reference_density(materials, mat_a) : REAL(0.0));
         real shepard = REAL(0.0), drho = REAL(0.0), diffusion = REAL(0.0);
         real nearest = REAL(1e30);
         FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
@@ -158,10 +161,16 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                     u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
                 drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
                 if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE) {
-                    const real q_b = density[b] - (p.density_diffusion == DIFFUSION_RUSSELL
-                                                       ? reference_density(materials, material[b])
-                                                       : REAL(0.0));
-                    diffusion += density_diffusion_pair(q_a, q_b, f * r2, r2, v_b, &p);
+                    const real q_b = density[b] - (shifted ? reference_density(materials, material[b]) : REAL(0.0));
+                    real dq = q_a - q_b;
+                    if (p.density_diffusion == DIFFUSION_FOURTAKAS) {
+                        /* minus the hydrostatic density difference of the pair,
+                         * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
+                        const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
+                        dq -= reference_density(materials, material[b]) * dot3(p.gravity, r_ab) /
+                              (c0_b * c0_b);
+                    }
+                    diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, &p);
                 }
             }
         }

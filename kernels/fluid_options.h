@@ -5,6 +5,7 @@
 #define DIFFUSION_NONE 0
 #define DIFFUSION_MOLTENI 1 /* diffuses rho (Molteni & Colagrossi 2009) */
 #define DIFFUSION_RUSSELL 2 /* diffuses rho - rho0 (Russell 2018 Eq. 3.53) */
+#define DIFFUSION_FOURTAKAS 3 /* diffuses rho - rho_hydrostatic (Fourtakas et al. 2019) */
 
 #define PRESSURE_RENORMALISED 0 /* Russell 2018 Eq. 3.17 */
 #define PRESSURE_SYMMETRIC 1

@@ -196,18 +196,19 @@ static int diffusion_rates(const char *form, const char *heavy_density, double a
 static void test_density_diffusion(void)
 {
     enum { MAX = 1000 };
-    static double one[MAX], two[MAX], mixed_molteni[MAX], x[MAX];
+    static double one[MAX], two[MAX], mixed_molteni[MAX], fourtakas[MAX], x[MAX];
     int n = 0;
     const double A = 1.0, delta = 0.1, h = 0.025, c0 = 10.0, k = 2.0 * PI;
     CHECK_OK(diffusion_rates("russell", "1000", A, one, x, &n));
     CHECK_OK(diffusion_rates("russell", "2000", A, two, x, &n));
     CHECK_OK(diffusion_rates("molteni", "2000", A, mixed_molteni, x, &n));
+    CHECK_OK(diffusion_rates("fourtakas", "2000", A, fourtakas, x, &n)); /* no gravity: = russell */
     double decay = 0.0, worst_mixed = 0.0, worst_laplacian = 0.0, molteni_scale = 0.0;
     const double expected_scale = delta * h * c0 * k * k * A;
     for (int i = 0; i < n; ++i) {
         const double s = sin(k * x[i]);
         decay += one[i] * s;
-        worst_mixed = fmax(worst_mixed, fabs(two[i] - one[i]));
+        worst_mixed = fmax(worst_mixed, fmax(fabs(two[i] - one[i]), fabs(fourtakas[i] - one[i])));
         worst_laplacian = fmax(worst_laplacian, fabs(one[i] + expected_scale * s));
         molteni_scale = fmax(molteni_scale, fabs(mixed_molteni[i]));
     }
@@ -259,6 +260,39 @@ static void test_guard_stops_run(void)
     snprintf(path, sizeof path, "%s/snap_000001.h5", dir);
     CHECK(access(path, F_OK) == 0, "no last good snapshot at %s (message: %s)", path, message);
     CHECK(s.last_good_step < s.step, "last good step %lld not before the failure at %lld", s.last_good_step, s.step);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
+/* F3: the tank at rest. After 5 s, pressure within 1% of rho g (H - y)
+ * below the top tenth, and no motion: max speed < 1e-3 sqrt(g H). */
+static void test_hydrostatic(void)
+{
+    amsph_case c;
+    if (load("hydrostatic_2d.yaml", &c))
+        return;
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    const double g = 9.81, H = 1.0, rho0 = 1000.0;
+    double worst_p = 0.0, fastest = 0.0;
+    for (int i = 0; i < h.n; ++i) {
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] != AMSPH_KIND_FLUID)
+            continue;
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
+        const amsph_real *u = amsph_host_real(&h, AMSPH_FIELD_VELOCITY) + 3 * i;
+        fastest = fmax(fastest, sqrt((double)(u[0] * u[0] + u[1] * u[1])));
+        if (x[1] < 0.9 * H)
+            worst_p = fmax(worst_p, fabs(amsph_host_real(&h, AMSPH_FIELD_PRESSURE)[i] - rho0 * g * (H - x[1])));
+    }
+    fprintf(stderr, "hydrostatic: pressure error %.4f of rho g H, max speed %.2e m/s\n", worst_p / (rho0 * g * H),
+            fastest);
+    CHECK(worst_p < 0.01 * rho0 * g * H, "pressure error %.4f of rho g H (goal < 1%%)", worst_p / (rho0 * g * H));
+    CHECK(fastest < 1e-3 * sqrt(g * H), "max speed %.2e m/s (goal < %.2e)", fastest, 1e-3 * sqrt(g * H));
+    amsph_host_free(&h);
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
 }
@@ -349,6 +383,7 @@ int main(void)
     test_density_diffusion();
     test_guard_stops_run();
     test_channels();
+    test_hydrostatic();
     test_dambreak_volume();
     return testing_finish();
 }
