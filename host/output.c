@@ -57,20 +57,6 @@ static hid_t native_type(amsph_field_type t)
     return sizeof(amsph_real) == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
 }
 
-static herr_t write_string_attribute(hid_t object, const char *name, const char *value)
-{
-    hid_t type = H5Tcopy(H5T_C_S1);
-    H5Tset_size(type, strlen(value) + 1);
-    hid_t space = H5Screate(H5S_SCALAR);
-    hid_t attr = H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    herr_t status = attr < 0 ? -1 : H5Awrite(attr, type, value);
-    if (attr >= 0)
-        H5Aclose(attr);
-    H5Sclose(space);
-    H5Tclose(type);
-    return status;
-}
-
 static herr_t write_scalar_attribute(hid_t object, const char *name, hid_t type, const void *value)
 {
     hid_t space = H5Screate(H5S_SCALAR);
@@ -79,6 +65,15 @@ static herr_t write_scalar_attribute(hid_t object, const char *name, hid_t type,
     if (attr >= 0)
         H5Aclose(attr);
     H5Sclose(space);
+    return status;
+}
+
+static herr_t write_string_attribute(hid_t object, const char *name, const char *value)
+{
+    hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, strlen(value) + 1);
+    herr_t status = write_scalar_attribute(object, name, type, value);
+    H5Tclose(type);
     return status;
 }
 

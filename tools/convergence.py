@@ -6,8 +6,9 @@ particle-steps per second, error against the known answer and observed order.
     tools/convergence.py CASE DX [DX ...] [--amsph build/amsph] [--backend openmp]
 
 CASE is one of: poiseuille, couette (L2 velocity error relative to the peak
-speed, largest over the output times; Morris, Fox & Zhu 1997) and dambreak,
-dambreak_3d (largest drift of the fluid volume sum m/rho).
+speed, largest over the output times; Morris, Fox & Zhu 1997), hydrostatic
+(largest pressure error below the top tenth at the end, relative to rho g H)
+and dambreak, dambreak_3d (largest drift of the fluid volume sum m/rho).
 Needs numpy and h5py (Debian: python3-numpy python3-h5py)."""
 import argparse, glob, math, os, re, subprocess, tempfile, time
 
@@ -59,10 +60,19 @@ def volume_drift(outdir):
     return max(abs(v / volumes[0] - 1) for v in volumes)
 
 
+def hydrostatic_error(outdir, g=9.81, H=1.0, rho0=1000.0):
+    """Pressure error at the end, below the top tenth, relative to rho g H."""
+    *_, (t, s) = snapshots(outdir)
+    below = (s["kind"] == 0) & (s["position"][:, 1] < 0.9 * H)
+    exact = rho0 * g * (H - s["position"][below, 1])
+    return np.max(np.abs(s["pressure"][below] - exact)) / (rho0 * g * H)
+
+
 CASES = {
     "poiseuille": ("cases/validation/poiseuille_2d.yaml", lambda d: channel_error(d, poiseuille, 2.5e-5)),
     "couette": ("cases/validation/couette_2d.yaml", lambda d: channel_error(d, couette, 2.5e-5)),
     "dambreak": ("cases/validation/dambreak_2d.yaml", volume_drift),
+    "hydrostatic": ("cases/validation/hydrostatic_2d.yaml", hydrostatic_error),
     "dambreak_3d": ("cases/validation/dambreak_3d.yaml", volume_drift),
 }
 
