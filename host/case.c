@@ -447,7 +447,9 @@ static shown range_text(const key_spec *k)
     if ((k->flags & F_FROM_LO) && (k->flags & F_UP_TO_HI)) {
         const char *fmt = (k->type == VT_INT && k->hi - k->lo == 1) ? "%g or %g" : "in [%g, %g]";
         snprintf(out.s, sizeof out.s, fmt, k->lo, k->hi);
-    } else if (k->flags & F_ABOVE_LO)
+    } else if ((k->flags & F_ABOVE_LO) && (k->flags & F_UP_TO_HI))
+        snprintf(out.s, sizeof out.s, "in (%g, %g]", k->lo, k->hi);
+    else if (k->flags & F_ABOVE_LO)
         snprintf(out.s, sizeof out.s, "> %g", k->lo);
     else if (k->flags & F_FROM_LO)
         snprintf(out.s, sizeof out.s, ">= %g", k->lo);

@@ -24,12 +24,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->clamp_negative_pressure = f->clamp_negative_pressure;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
-    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
-    /* the equation of state of the initial density: p = p_b */
-    amsph_real *pressure = amsph_host_real(h, AMSPH_FIELD_PRESSURE);
-    for (int i = 0; i < h->n; ++i)
-        pressure[i] = p->background_pressure;
-    return 0;
+    return amsph_host_add_field(h, AMSPH_FIELD_SHEPARD);
 }
 
 static amsph_arg field(amsph_sim *s, amsph_field_id f)

@@ -176,6 +176,21 @@ static const bad_case bad_cases[] = {
      NAME ":17: 'h_over_dx' must be in [1, 3], got 5"},
     {"dimension 4", "dimension: 4\n", NAME ":1: 'dimension' must be 2 or 3, got 4"},
     {"device negative", BASE2 "device: -2\n", NAME ":17: 'device' must be >= -1, got -2"},
+    /* the fluid module */
+    {"fluid needs a sound speed", BASE2 "fluid: {}\n",
+     NAME ":9: material 'water' needs 'sound_speed' > 0 for the fluid module (about 10 times the "
+          "largest expected flow speed)"},
+    {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
+     NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
+          "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
+          "clamp_negative_pressure, wall_slip, cfl, dt_min, min_pair_distance, max_density_error)"},
+    {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
+     NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
+          "'antuono'"},
+    {"fluid cfl above 1", BASE2 "fluid: {cfl: 2}\n", NAME ":17: 'fluid.cfl' must be in (0, 1], got 2"},
+    {"fluid not a map", BASE2 "fluid: [1]\n", NAME ":17: 'fluid' must be a map, got a list"},
+    {"hydrostatic not a boolean", BASE2 "    hydrostatic: yes\n",
+     NAME ":17: 'geometry[0].hydrostatic' must be one of false, true; got 'yes'"},
     {"viscosity negative",
      HEAD2 "materials:\n  - name: water\n    density: 1\n    viscosity: "
            "-1e-3\n",
