@@ -197,6 +197,10 @@ static const key_spec specs[] = {
      .choices = bool_choices, .def = 0, .offset = FLUID(clamp_negative_pressure),
      .doc = "Fluid pressure below the background pressure is raised to it (no tension: "
             "suppresses the tensile instability of free-surface flows)"},
+    {.section = SEC_FLUID, .key = "tensile_correction", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
+     .lo = 0, .hi = 1, .def = 0, .offset = FLUID(tensile_correction),
+     .doc = "Monaghan (2000) artificial pressure epsilon: pairs under tension (p below the background "
+            "pressure) repel as (W(r)/W(dx))^4 (fluid pairs only); 0: off"},
     {.section = SEC_FLUID, .key = "wall_slip", .type = VT_CHOICE, .choices = slip_choices,
      .def = WALL_NO_SLIP, .offset = FLUID(wall_slip), .doc = "Wall condition for the velocity"},
     {.section = SEC_FLUID, .key = "cfl", .type = VT_NUMBER, .flags = F_ABOVE_LO | F_UP_TO_HI,

@@ -74,6 +74,7 @@ typedef struct {
     double artificial_alpha;    /* Monaghan alpha, default 0.02 */
     double background_pressure; /* Pa, default 0 */
     int clamp_negative_pressure; /* 1: p = max(p, background_pressure), default 0 */
+    double tensile_correction;  /* Monaghan (2000) artificial-pressure epsilon under tension, default 0 */
     int wall_slip;              /* WALL_*, default WALL_NO_SLIP */
     double cfl;                 /* acoustic CFL number, default 0.25 */
     double dt_min;              /* s: a step below it stops the run; default 0: 1e-6 of the first step */

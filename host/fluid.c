@@ -22,6 +22,8 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->viscosity = f->viscosity;
     p->wall_slip = f->wall_slip;
     p->clamp_negative_pressure = f->clamp_negative_pressure;
+    p->tensile_correction = (amsph_real)f->tensile_correction;
+    p->dx = (amsph_real)s->config.dx;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
     return amsph_host_add_field(h, AMSPH_FIELD_SHEPARD);

@@ -21,6 +21,8 @@ typedef struct {
     int viscosity;                         /* VISCOSITY_* */
     int wall_slip;                         /* WALL_* */
     int clamp_negative_pressure;           /* 1: p >= background pressure */
+    AMSPH_SHARED_REAL tensile_correction;  /* Monaghan (2000) epsilon; 0: off */
+    AMSPH_SHARED_REAL dx;                  /* initial particle spacing, m */
 } fluid_params;
 
 #endif

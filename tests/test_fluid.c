@@ -375,8 +375,35 @@ static void test_pressure_clamp(void)
     }
 }
 
+/* The coarse 2D dam break (dx = 0.0146, 10 particles across the column)
+ * pairs two fluid particles under tension closer than 0.3 dx at t = 0.275 s
+ * without Monaghan's tensile correction; with it the run reaches its end. */
+static void test_tensile_correction(void)
+{
+    for (int on = 0; on <= 1; ++on) {
+        amsph_case c;
+        if (load("dambreak_2d.yaml", &c))
+            return;
+        c.dx = 0.0146;
+        c.fluid.tensile_correction = on ? 0.1 : 0.0;
+        amsph_backend *b = testing_backend(0);
+        amsph_sim s;
+        CHECK_OK(amsph_sim_create(&c, b, &s));
+        const int status = amsph_sim_advance(&s, c.end_time, NULL, NULL);
+        if (on)
+            CHECK(status == 0, "with the tensile correction: %s", amsph_last_error());
+        else
+            CHECK(status != 0 && strstr(amsph_last_error(), "guard 'particle spacing'"),
+                  "without the correction the coarse dam break should pair particles (status %d: %s)",
+                  status, status ? amsph_last_error() : "");
+        amsph_sim_free(&s);
+        amsph_backend_destroy(b);
+    }
+}
+
 int main(void)
 {
+    test_tensile_correction();
     test_pressure_clamp();
     test_free_slip();
     test_dt_floor();
