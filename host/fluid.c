@@ -99,15 +99,9 @@ static void lower(double *dt, const char **limit, double candidate, const char *
 
 int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
 {
-    amsph_particles *p = &s->particles;
     double umax = 0.0, amax = 0.0, c0, nu;
-    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
-                             amsph_arg_int(p->n), amsph_arg_buffer(s->work)));
-    AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &umax));
-    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n,
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]), amsph_arg_int(p->n),
-                             amsph_arg_buffer(s->work)));
-    AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &amax));
+    AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_VELOCITY, &umax));
+    AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_ACCELERATION, &amax));
     material_extremes(&s->config, &c0, &nu);
     const double h = s->h;
     lower(dt, limit, s->config.fluid.cfl * h / (c0 + umax), "acoustic");

@@ -103,6 +103,14 @@ void amsph_sim_free(amsph_sim *s)
     memset(s, 0, sizeof *s);
 }
 
+int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
+{
+    amsph_particles *p = &s->particles;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n, amsph_arg_buffer(p->field[f]),
+                             amsph_arg_int(p->n), amsph_arg_buffer(s->work)));
+    return amsph_reduce_max(s->backend, s->work, p->n, out);
+}
+
 /* Without the fluid module the limits are the kinematic CFL and the body
  * force (Fuchs et al. 2022 Eq. 42); the fluid module adds its own. */
 int amsph_sim_stable_dt(amsph_sim *s, double *dt)
@@ -112,12 +120,8 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
     if (s->config.fluid.enabled) {
         AMSPH_CHECK(amsph_fluid_dt(s, dt, &s->dt_limit));
     } else {
-        amsph_particles *p = &s->particles;
         double umax = 0.0;
-        AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "vector_norm", p->n,
-                                 amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]), amsph_arg_int(p->n),
-                                 amsph_arg_buffer(s->work)));
-        AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &umax));
+        AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_VELOCITY, &umax));
         const double *g = s->config.gravity;
         const double gnorm = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
         if (umax > 0.0) {

@@ -44,6 +44,9 @@ double amsph_support_over_h(amsph_kernel_type kernel);
 int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s);
 void amsph_sim_free(amsph_sim *s);
 
+/* Largest |v| over the particles of a 3-vector field (velocity, acceleration). */
+int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out);
+
 /* The step the stability limits allow now, s (sets s->dt_limit). */
 int amsph_sim_stable_dt(amsph_sim *s, double *dt);
 /* Advances by dt (kick-drift-kick), then checks the guards. */

@@ -13,6 +13,20 @@
 
 #define PI 3.14159265358979323846
 
+/* The case's simulation on the OpenMP backend (a failure fails the test). */
+static amsph_backend *start_sim(const amsph_case *c, amsph_sim *s)
+{
+    amsph_backend *b = testing_backend(0);
+    CHECK_OK(amsph_sim_create(c, b, s));
+    return b;
+}
+
+static void stop_sim(amsph_backend *b, amsph_sim *s)
+{
+    amsph_sim_free(s);
+    amsph_backend_destroy(b);
+}
+
 static int load(const char *relative, amsph_case *c)
 {
     char path[1024], err[1024];
@@ -79,8 +93,7 @@ static double channel_error(const char *file, channel_solution exact, double sca
             worst = fmax(worst, sqrt(sum / count) / scale);
     }
     CHECK(status == 0, "%s: %s", file, amsph_last_error());
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
     return worst;
 }
 
@@ -112,9 +125,8 @@ static void test_dambreak_volume(const char *file)
     amsph_case c;
     if (load(file, &c))
         return;
-    amsph_backend *b = testing_backend(0);
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_sim(&c, &s);
     const double v0 = fluid_volume(&s);
     double drift = 0.0;
     for (int k = 1; k * c.output_interval <= c.end_time * (1 + 1e-9); ++k) {
@@ -127,8 +139,7 @@ static void test_dambreak_volume(const char *file)
     fprintf(stderr, "%s: largest volume drift %.5f\n", file, drift);
     CHECK(drift < 0.005, "%s: volume drift %.5f (goal < 0.5%%)", file, drift);
     CHECK(s.particles.removed == 0, "%lld particles left the tank", s.particles.removed);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
 }
 
 /* A periodic 2D lattice at rest, two materials (rho0 1000 and 2000) in
@@ -188,8 +199,7 @@ static int diffusion_rates(const char *form, const char *heavy_density, double a
     }
     *n = h.n;
     amsph_host_free(&h);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
     return 0;
 }
 
@@ -247,9 +257,8 @@ static void test_guard_stops_run(void)
     char err[512], dir[] = "/tmp/amsph_test_guard_XXXXXX";
     CHECK(mkdtemp(dir) != NULL, "mkdtemp");
     CHECK(amsph_case_parse(text, strlen(text), "guard.yaml", &c, err, sizeof err) == 0, "%s", err);
-    amsph_backend *b = testing_backend(0);
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_sim(&c, &s);
     const amsph_run_options run = {.outdir = dir, .quiet = 1};
     CHECK(amsph_sim_run(&s, &run) != 0, "the run survived a Mach-5 collision");
     const char *message = amsph_last_error();
@@ -260,8 +269,7 @@ static void test_guard_stops_run(void)
     snprintf(path, sizeof path, "%s/snap_000001.h5", dir);
     CHECK(access(path, F_OK) == 0, "no last good snapshot at %s (message: %s)", path, message);
     CHECK(s.last_good_step < s.step, "last good step %lld not before the failure at %lld", s.last_good_step, s.step);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
 }
 
 /* F3: the tank at rest. After 5 s, pressure within 1% of rho g (H - y)
@@ -271,9 +279,8 @@ static void test_hydrostatic(void)
     amsph_case c;
     if (load("hydrostatic_2d.yaml", &c))
         return;
-    amsph_backend *b = testing_backend(0);
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_sim(&c, &s);
     CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&s.particles, &h));
@@ -293,8 +300,7 @@ static void test_hydrostatic(void)
     CHECK(worst_p < 0.01 * rho0 * g * H, "pressure error %.4f of rho g H (goal < 1%%)", worst_p / (rho0 * g * H));
     CHECK(fastest < 1e-3 * sqrt(g * H), "max speed %.2e m/s (goal < %.2e)", fastest, 1e-3 * sqrt(g * H));
     amsph_host_free(&h);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
 }
 
 /* Free-slip walls exert no shear: the body-force driven channel then
@@ -305,9 +311,8 @@ static void test_free_slip(void)
     if (load("poiseuille_2d.yaml", &c))
         return;
     c.fluid.wall_slip = WALL_FREE_SLIP;
-    amsph_backend *b = testing_backend(0);
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_sim(&c, &s);
     const double t = 0.05, plug = c.gravity[0] * t;
     CHECK_OK(amsph_sim_advance(&s, t, NULL, NULL));
     amsph_host_particles h;
@@ -318,8 +323,7 @@ static void test_free_slip(void)
             worst = fmax(worst, fabs(amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i] - plug));
     CHECK(worst < 1e-3 * plug, "free slip: velocity differs from the plug F t = %g by %g", plug, worst);
     amsph_host_free(&h);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
 }
 
 /* A time step below dt_min stops the run with a message naming the limit. */
@@ -329,14 +333,12 @@ static void test_dt_floor(void)
     if (load("couette_2d.yaml", &c))
         return;
     c.fluid.dt_min = 1.0; /* far above the viscous step of ~3e-4 s */
-    amsph_backend *b = testing_backend(0);
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_sim(&c, &s);
     CHECK(amsph_sim_advance(&s, 0.01, NULL, NULL) != 0, "a step below dt_min was taken");
     CHECK(strstr(amsph_last_error(), "fell below dt_min") && strstr(amsph_last_error(), "viscous limit"),
           "message: %s", amsph_last_error());
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_sim(b, &s);
 }
 
 /* With clamp_negative_pressure a fluid under tension (rho < rho0) has the
@@ -350,9 +352,8 @@ static void test_pressure_clamp(void)
         c.fluid.clamp_negative_pressure = clamp;
         c.fluid.background_pressure = 5.0;
         c.materials[0].sound_speed = 10.0; /* p = 5 - 100 Pa at rho = rho0 - 1 */
-        amsph_backend *b = testing_backend(0);
         amsph_sim s;
-        CHECK_OK(amsph_sim_create(&c, b, &s));
+        amsph_backend *b = start_sim(&c, &s);
         amsph_host_particles h;
         CHECK_OK(amsph_particles_download(&s.particles, &h));
         for (int i = 0; i < h.n; ++i)
@@ -370,8 +371,7 @@ static void test_pressure_clamp(void)
                 worst = fmax(worst, fabs(amsph_host_real(&h, AMSPH_FIELD_PRESSURE)[i] - expected));
         CHECK(worst < 1e-3, "clamp %d: pressure off the expected %g by %g", clamp, expected, worst);
         amsph_host_free(&h);
-        amsph_sim_free(&s);
-        amsph_backend_destroy(b);
+        stop_sim(b, &s);
     }
 }
 
@@ -386,9 +386,8 @@ static void test_tensile_correction(void)
             return;
         c.dx = 0.0146;
         c.fluid.tensile_correction = on ? 0.1 : 0.0;
-        amsph_backend *b = testing_backend(0);
         amsph_sim s;
-        CHECK_OK(amsph_sim_create(&c, b, &s));
+        amsph_backend *b = start_sim(&c, &s);
         const int status = amsph_sim_advance(&s, c.end_time, NULL, NULL);
         if (on)
             CHECK(status == 0, "with the tensile correction: %s", amsph_last_error());
@@ -396,8 +395,7 @@ static void test_tensile_correction(void)
             CHECK(status != 0 && strstr(amsph_last_error(), "guard 'particle spacing'"),
                   "without the correction the coarse dam break should pair particles (status %d: %s)",
                   status, status ? amsph_last_error() : "");
-        amsph_sim_free(&s);
-        amsph_backend_destroy(b);
+        stop_sim(b, &s);
     }
 }
 
@@ -412,9 +410,8 @@ static void test_pressure_gradient_balances_gravity(void)
         if (load("hydrostatic_2d.yaml", &c))
             return;
         c.fluid.pressure_gradient = form;
-        amsph_backend *b = testing_backend(0);
         amsph_sim s;
-        CHECK_OK(amsph_sim_create(&c, b, &s));
+        amsph_backend *b = start_sim(&c, &s);
         amsph_host_particles h;
         CHECK_OK(amsph_particles_download(&s.particles, &h));
         const double support = s.support;
@@ -433,8 +430,7 @@ static void test_pressure_gradient_balances_gravity(void)
         CHECK(worst < 0.01 * 9.81, "form %d: interior acceleration %.3g m/s^2 at rest (goal < 1%% of g)",
               form, worst);
         amsph_host_free(&h);
-        amsph_sim_free(&s);
-        amsph_backend_destroy(b);
+        stop_sim(b, &s);
     }
 }
 
