@@ -42,10 +42,11 @@ _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
-typedef enum { SEC_TOP, SEC_DOMAIN, SEC_FLUID, SEC_MATERIAL, SEC_GEOMETRY } section_id;
+typedef enum { SEC_TOP, SEC_DOMAIN, SEC_FLUID, SEC_THERMAL, SEC_MATERIAL, SEC_GEOMETRY } section_id;
 
 /* How each section is named in the key reference. */
-static const char *const section_prefix[] = {"", "domain.", "fluid.", "materials[].", "geometry[]."};
+static const char *const section_prefix[] = {"",         "domain.",      "fluid.",
+                                              "thermal.", "materials[].", "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -57,7 +58,8 @@ typedef enum {
     VT_MATERIAL, /* int: index of the material with the given name */
     VT_FACES,    /* unsigned: OR of the values of a list of `choices` */
     VT_MAP,      /* a nested map with the keys of section `sub` */
-    VT_LIST      /* a list of lo..hi maps with the keys of section `sub` */
+    VT_LIST,     /* a list of lo..hi maps with the keys of section `sub` */
+    VT_PROPERTY  /* amsph_property: a number, or a list of [T, value] pairs */
 } value_type;
 
 enum {
@@ -108,6 +110,9 @@ static const choice viscosity_choices[] = {{"laminar", VISCOSITY_LAMINAR, 0},
                                            {"artificial", VISCOSITY_ARTIFICIAL, 0},
                                            {NULL, 0, 0}};
 static const choice bool_choices[] = {{"false", 0, 0}, {"true", 1, 0}, {NULL, 0, 0}};
+static const choice integration_choices[] = {{"explicit", AMSPH_THERMAL_EXPLICIT, 0},
+                                             {"midpoint", AMSPH_THERMAL_MIDPOINT, 0},
+                                             {NULL, 0, 0}};
 static const choice slip_choices[] = {
     {"no_slip", WALL_NO_SLIP, 0}, {"free_slip", WALL_FREE_SLIP, 0}, {NULL, 0, 0}};
 
@@ -135,6 +140,7 @@ typedef struct {
 
 #define CASE(field) offsetof(amsph_case, field)
 #define FLUID(field) offsetof(amsph_case, fluid.field)
+#define THERMAL(field) offsetof(amsph_case, thermal.field)
 #define MAT(field) offsetof(amsph_material, field)
 #define GEO(field) offsetof(amsph_geometry, field)
 
@@ -216,6 +222,31 @@ static const key_spec specs[] = {
     {.section = SEC_FLUID, .key = "max_density_error", .type = VT_NUMBER, .flags = F_ABOVE_LO,
      .lo = 0, .def = 0.1, .offset = FLUID(max_density_error),
      .doc = "Guard: |rho - rho0| / rho0 above this stops the run"},
+    {.section = SEC_TOP, .key = "thermal", .type = VT_MAP, .sub = SEC_THERMAL,
+     .doc = "Heat transfer and phase change module; present: on"},
+    {.section = SEC_THERMAL, .key = "integration", .type = VT_CHOICE,
+     .choices = integration_choices, .def = AMSPH_THERMAL_EXPLICIT, .offset = THERMAL(integration),
+     .doc = "Enthalpy update: explicit Euler, or implicit midpoint by fixed-point iteration "
+            "(Russell Alg. 3.1)"},
+    {.section = SEC_THERMAL, .key = "tolerance", .type = VT_NUMBER, .flags = F_ABOVE_LO, .lo = 0,
+     .def = 1e-6, .offset = THERMAL(tolerance),
+     .doc = "Midpoint: iterate until max |T(i+1) - T(i)| / max T(n) is below this"},
+    {.section = SEC_THERMAL, .key = "max_iterations", .type = VT_INT, .flags = F_FROM_LO, .lo = 1,
+     .def = 20, .offset = THERMAL(max_iterations),
+     .doc = "Midpoint: iteration cap; a step that does not converge stops the run"},
+    {.section = SEC_THERMAL, .key = "diffusion_number", .type = VT_NUMBER,
+     .flags = F_ABOVE_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0.1,
+     .offset = THERMAL(diffusion_number),
+     .doc = "Diffusion limit dt <= diffusion_number rho c h^2 / k (Fuchs et al. Eq. 42)"},
+    {.section = SEC_THERMAL, .key = "radiation", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = THERMAL(radiation),
+     .doc = "Free surfaces radiate sigma eps (T^4 - T_inf^4) (Russell Eq. 3.39)"},
+    {.section = SEC_THERMAL, .key = "ambient_temperature", .type = VT_NUMBER, .unit = "K",
+     .flags = F_FROM_LO, .lo = 0, .def = 300, .offset = THERMAL(ambient_temperature),
+     .doc = "Temperature T_inf the surfaces radiate to"},
+    {.section = SEC_THERMAL, .key = "viscous_heating", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = THERMAL(viscous_heating), .rule = "needs `fluid`",
+     .doc = "Viscous dissipation heats the fluid (Russell Eq. 3.44)"},
     {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
      .doc = "Materials, referred to by name from `geometry`"},
@@ -230,6 +261,37 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "sound_speed", .type = VT_NUMBER, .unit = "m/s",
      .flags = F_FROM_LO, .lo = 0, .offset = MAT(sound_speed),
      .doc = "Artificial speed of sound; 0: not set"},
+    {.section = SEC_MATERIAL, .key = "specific_heat", .type = VT_PROPERTY, .unit = "J/(kg·K)",
+     .flags = F_ABOVE_LO, .lo = 0, .offset = MAT(specific_heat), .rule = "needed by `thermal`",
+     .doc = "Specific heat capacity (of the solid): a number or a list of [T, value] pairs"},
+    {.section = SEC_MATERIAL, .key = "liquid_specific_heat", .type = VT_PROPERTY,
+     .unit = "J/(kg·K)", .flags = F_ABOVE_LO, .lo = 0, .offset = MAT(liquid_specific_heat),
+     .rule = "default: `specific_heat`",
+     .doc = "Specific heat capacity of the liquid; blended by the liquid fraction"},
+    {.section = SEC_MATERIAL, .key = "conductivity", .type = VT_PROPERTY, .unit = "W/(m·K)",
+     .flags = F_FROM_LO, .lo = 0, .offset = MAT(conductivity), .rule = "needed by `thermal`",
+     .doc = "Thermal conductivity (of the solid): a number or a list of [T, value] pairs"},
+    {.section = SEC_MATERIAL, .key = "liquid_conductivity", .type = VT_PROPERTY, .unit = "W/(m·K)",
+     .flags = F_FROM_LO, .lo = 0, .offset = MAT(liquid_conductivity),
+     .rule = "default: `conductivity`",
+     .doc = "Thermal conductivity of the liquid; blended by the liquid fraction"},
+    {.section = SEC_MATERIAL, .key = "melting_temperature", .type = VT_NUMBER, .unit = "K",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = MAT(melting_temperature),
+     .doc = "Melting temperature T_m; not set: the material does not melt"},
+    {.section = SEC_MATERIAL, .key = "melting_range", .type = VT_NUMBER, .unit = "K",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = MAT(melting_range),
+     .rule = "needed with `melting_temperature`; < 2 `melting_temperature`",
+     .doc = "Width of the mushy interval [T_m - range/2, T_m + range/2] (apparent heat capacity)"},
+    {.section = SEC_MATERIAL, .key = "latent_heat", .type = VT_NUMBER, .unit = "J/kg",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(latent_heat),
+     .doc = "Latent heat of melting, released over the mushy interval"},
+    {.section = SEC_MATERIAL, .key = "mushy_viscosity", .type = VT_NUMBER, .unit = "Pa·s",
+     .flags = F_FROM_LO | F_NO_DEFAULT, .lo = 0, .offset = MAT(mushy_viscosity),
+     .rule = "default: `viscosity`",
+     .doc = "Viscosity at liquid fraction 0; blended linearly to `viscosity` at 1"},
+    {.section = SEC_MATERIAL, .key = "emissivity", .type = VT_NUMBER,
+     .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0, .offset = MAT(emissivity),
+     .doc = "Emissivity of free surfaces (with `thermal.radiation`)"},
     {.section = SEC_TOP, .key = "geometry", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
      .doc = "Bodies filled with particles"},
@@ -267,7 +329,7 @@ static const key_spec specs[] = {
     {.section = SEC_GEOMETRY, .key = "velocity", .type = VT_VECTOR, .unit = "m/s",
      .offset = GEO(velocity), .doc = "Initial velocity"},
     {.section = SEC_GEOMETRY, .key = "temperature", .type = VT_NUMBER, .unit = "K",
-     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = GEO(temperature),
+     .flags = F_FROM_LO | F_NO_DEFAULT, .lo = 0, .offset = GEO(temperature),
      .doc = "Initial temperature"},
     {.section = SEC_GEOMETRY, .key = "hydrostatic", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = GEO(hydrostatic),
@@ -286,6 +348,7 @@ typedef struct {
     yaml_document_t *doc;
     amsph_case *c;
     size_t material_line[AMSPH_MAX_MATERIALS]; /* where each material's name is */
+    size_t thermal_line;                       /* where the thermal section starts */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -689,6 +752,48 @@ static int load_material_ref(parser *p, const slot *s)
                 s->path, known);
 }
 
+/* A temperature-dependent property: a number, or a list of 2 ..
+ * AMSPH_MAX_TABLE pairs [T, value], T >= 0 and increasing, each value
+ * within the key's bounds. */
+static int load_property(parser *p, const slot *s)
+{
+    amsph_property *prop = s->dst;
+    memset(prop, 0, sizeof *prop);
+    const yaml_node_t *n = s->node;
+    if (n->type == YAML_SCALAR_NODE) {
+        slot number = *s;
+        number.dst = &prop->v[0];
+        prop->n = 1;
+        return load_number(p, &number);
+    }
+    const size_t count = n->type == YAML_SEQUENCE_NODE ? list_length(n) : 0;
+    if (count < 2 || count > AMSPH_MAX_TABLE)
+        return fail(p, value_line(s),
+                    "'%s' must be a number or a list of 2 to %d [temperature, value] pairs, got %s",
+                    s->path, AMSPH_MAX_TABLE, describe(n).s);
+    for (size_t i = 0; i < count; i++) {
+        const yaml_node_t *pair = list_item(p, n, i);
+        char path[PATH_LEN];
+        set_path(path, "%s[%zu]", s->path, i);
+        if (pair->type != YAML_SEQUENCE_NODE || list_length(pair) != 2)
+            return fail(p, line_of(pair), "'%s' must be a pair [temperature, value], got %s", path,
+                        describe(pair).s);
+        const yaml_node_t *t = list_item(p, pair, 0), *v = list_item(p, pair, 1);
+        if (read_number(p, t, line_of(t), path, &prop->T[i]) ||
+            read_number(p, v, line_of(v), path, &prop->v[i]))
+            return CASE_ERROR;
+        if (prop->T[i] < 0 || (i > 0 && !(prop->T[i] > prop->T[i - 1])))
+            return fail(p, line_of(t),
+                        "'%s': temperatures must be >= 0 K and increasing, got %s after %g", path,
+                        describe(t).s, i > 0 ? prop->T[i - 1] : 0.0);
+        if (!within_bounds(s->spec, prop->v[i]))
+            return fail(p, line_of(v), "'%s' value must be %s, got %s", path,
+                        range_text(s->spec).s, describe(v).s);
+    }
+    prop->n = (int)count;
+    return 0;
+}
+
 /* A scope for a nested map or list entry, labelled `label`. */
 static void init_scope(scope *sc, section_id section, const char *label, void *target,
                        const yaml_node_t *map)
@@ -763,6 +868,7 @@ static const loader loaders[] = {
     [VT_FACES] = load_faces,
     [VT_MAP] = load_map,
     [VT_LIST] = load_list,
+    [VT_PROPERTY] = load_property,
 };
 
 /* ---- maps: collecting keys, defaults, rules across keys ------------------ */
@@ -885,6 +991,9 @@ static int apply_default(parser *p, const scope *sc, const key_spec *k, void *ds
     case VT_FACES:
         *(unsigned *)dst = 0;
         break;
+    case VT_PROPERTY:
+        memset(dst, 0, sizeof(amsph_property));
+        break;
     case VT_NAME:
     case VT_MATERIAL:
     case VT_MAP:
@@ -935,6 +1044,31 @@ static int check_corners(parser *p, const scope *sc, const double lo[3], const d
     return 0;
 }
 
+/* Liquid properties default to the solid's; a melting material needs its
+ * mushy interval, which must stay above 0 K. */
+static int finish_material_thermal(parser *p, const scope *sc)
+{
+    amsph_material *m = sc->target;
+    if (!found(sc, "liquid_specific_heat"))
+        m->liquid_specific_heat = m->specific_heat;
+    if (!found(sc, "liquid_conductivity"))
+        m->liquid_conductivity = m->conductivity;
+    if (!found(sc, "mushy_viscosity"))
+        m->mushy_viscosity = m->viscosity;
+    const yaml_node_t *melting = found(sc, "melting_temperature");
+    const yaml_node_t *range = found(sc, "melting_range");
+    if (melting && !range)
+        return fail(p, line_of(melting), "'%smelting_temperature' needs 'melting_range' (> 0 K)",
+                    sc->prefix);
+    if (range && !melting)
+        return fail(p, line_of(range), "'%smelting_range' needs 'melting_temperature'", sc->prefix);
+    if (melting && !(m->melting_range < 2 * m->melting_temperature))
+        return fail(p, line_of(range),
+                    "'%smelting_range' (%g K) must be below 2 'melting_temperature' (%g K)",
+                    sc->prefix, m->melting_range, m->melting_temperature);
+    return 0;
+}
+
 static int finish_material(parser *p, const scope *sc)
 {
     const amsph_material *m = sc->target;
@@ -944,12 +1078,35 @@ static int finish_material(parser *p, const scope *sc)
             return fail(p, line_of(name), "duplicate material name '%s' (first on line %zu)",
                         m->name, p->material_line[i]);
     p->material_line[sc->index] = line_of(name);
+    return finish_material_thermal(p, sc);
+}
+
+/* The thermal module needs heat capacities, conductivities and initial
+ * temperatures. */
+static int finish_thermal(parser *p)
+{
+    const amsph_case *c = p->c;
+    for (int i = 0; i < c->n_materials; i++) {
+        const amsph_material *m = &c->materials[i];
+        const char *missing = !m->specific_heat.n ? "specific_heat" : !m->conductivity.n ? "conductivity" : NULL;
+        if (missing)
+            return fail(p, p->material_line[i], "material '%s' needs '%s' for the thermal module",
+                        m->name, missing);
+    }
+    for (int k = 0; k < c->n_geometry; k++)
+        if (!c->geometry[k].has_temperature)
+            return fail(p, (size_t)c->geometry[k].line,
+                        "geometry[%d] needs 'temperature' for the thermal module", k);
+    if (c->thermal.viscous_heating && !c->fluid.enabled)
+        return fail(p, p->thermal_line, "'thermal.viscous_heating' needs the fluid module (a 'fluid:' section)");
     return 0;
 }
 
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
+    if (p->c->thermal.enabled && finish_thermal(p))
+        return CASE_ERROR;
     if (!p->c->fluid.enabled)
         return 0;
     for (int i = 0; i < p->c->n_materials; i++)
@@ -1000,6 +1157,10 @@ static int finish_scope(parser *p, const scope *sc)
     switch (sc->section) {
     case SEC_FLUID:
         p->c->fluid.enabled = 1;
+        return 0;
+    case SEC_THERMAL:
+        p->c->thermal.enabled = 1;
+        p->thermal_line = line_of(sc->map);
         return 0;
     case SEC_DOMAIN:
         return check_corners(p, sc, p->c->domain_min, p->c->domain_max);
@@ -1199,6 +1360,7 @@ static const char *type_name(value_type t)
         [VT_FACES] = "list of face names",
         [VT_MAP] = "map",
         [VT_LIST] = "list of maps",
+        [VT_PROPERTY] = "number or list of [T, value]",
     };
     return names[t];
 }
@@ -1215,7 +1377,7 @@ static shown default_text(const key_spec *k)
     shown out;
     if (k->flags & F_REQUIRED)
         snprintf(out.s, sizeof out.s, "required");
-    else if (k->flags & F_NO_DEFAULT)
+    else if ((k->flags & F_NO_DEFAULT) || k->type == VT_PROPERTY)
         snprintf(out.s, sizeof out.s, "not set");
     else if (k->type == VT_VECTOR)
         snprintf(out.s, sizeof out.s, "0");

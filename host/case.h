@@ -33,11 +33,31 @@ typedef enum {
 
 typedef enum { AMSPH_BACKEND_OPENMP = 0, AMSPH_BACKEND_OPENCL = 1 } amsph_backend_kind;
 
+/* A material property: a constant, or a piecewise-linear function of
+ * temperature given by points (T[i], v[i]) with T increasing, constant
+ * beyond the first and last point. */
+#define AMSPH_MAX_TABLE 16
+typedef struct {
+    int n; /* 0: not given; 1: the constant v[0]; >= 2: a table */
+    double T[AMSPH_MAX_TABLE]; /* K */
+    double v[AMSPH_MAX_TABLE];
+} amsph_property;
+
 typedef struct {
     char name[AMSPH_NAME_LEN];
     double density;   /* reference density rho0, kg/m^3, > 0 */
-    double viscosity; /* dynamic viscosity, Pa s, >= 0 (default 0) */
+    double viscosity; /* dynamic viscosity (of the liquid), Pa s, >= 0 (default 0) */
     double sound_speed; /* artificial speed of sound c0, m/s, >= 0 (default 0: not set) */
+    /* thermal module; the liquid_* ones default to the solid's */
+    amsph_property specific_heat;        /* J/(kg K), > 0 */
+    amsph_property liquid_specific_heat;
+    amsph_property conductivity;         /* W/(m K), >= 0 */
+    amsph_property liquid_conductivity;
+    double melting_temperature; /* T_m, K; 0: the material does not melt */
+    double melting_range;       /* width dT of the mushy interval [T_m - dT/2, T_m + dT/2], K */
+    double latent_heat;         /* J/kg, >= 0 */
+    double mushy_viscosity;     /* viscosity at the solidus (liquid fraction 0), Pa s */
+    double emissivity;          /* in [0, 1], default 0 */
 } amsph_material;
 
 /* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at
@@ -82,6 +102,21 @@ typedef struct {
     double max_density_error;   /* guard: |rho - rho0| / rho0 above this stops the run, default 0.1 */
 } amsph_fluid_settings;
 
+/* The thermal module (enthalpy, conduction, phase change, radiation); on
+ * when the case has a `thermal:` section. */
+typedef enum { AMSPH_THERMAL_EXPLICIT = 0, AMSPH_THERMAL_MIDPOINT = 1 } amsph_thermal_integration;
+
+typedef struct {
+    int enabled;
+    int integration;            /* amsph_thermal_integration, default explicit */
+    double tolerance;           /* midpoint: max |T^{i+1} - T^i| / T^n to stop, default 1e-6 */
+    int max_iterations;         /* midpoint: iteration cap, default 20 */
+    double diffusion_number;    /* dt <= diffusion_number rho c h^2 / k, default 0.1 */
+    int radiation;              /* 1: free surfaces radiate (Russell Eq. 3.39), default 0 */
+    double ambient_temperature; /* T_inf of the radiation, K, default 300 */
+    int viscous_heating;        /* 1: tau : grad u heats the fluid (Russell Eq. 3.44), default 0 */
+} amsph_thermal_settings;
+
 typedef struct {
     char path[512];       /* the file it came from (or the name given to the string parser) */
     int dim;              /* 2 or 3 */
@@ -97,6 +132,7 @@ typedef struct {
     int device;           /* OpenCL device index, default -1 (first); --device overrides */
     double gravity[3];    /* m/s^2, default 0 */
     amsph_fluid_settings fluid;
+    amsph_thermal_settings thermal;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];
     int n_geometry;

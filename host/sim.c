@@ -9,6 +9,7 @@
 #include "guards.h"
 #include "materials.h"
 #include "scene.h"
+#include "thermal.h"
 
 /* Steps between copies of the state that passed the guards. */
 #define LAST_GOOD_INTERVAL 20
@@ -26,6 +27,7 @@ static int upload_materials(amsph_sim *s)
         table[MATERIAL_STRIDE * m + MATERIAL_DENSITY] = (amsph_real)c->materials[m].density;
         table[MATERIAL_STRIDE * m + MATERIAL_SOUND_SPEED] = (amsph_real)c->materials[m].sound_speed;
         table[MATERIAL_STRIDE * m + MATERIAL_VISCOSITY] = (amsph_real)c->materials[m].viscosity;
+        table[MATERIAL_STRIDE * m + MATERIAL_MUSHY_VISCOSITY] = (amsph_real)c->materials[m].mushy_viscosity;
     }
     const size_t bytes = sizeof table;
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->materials));
@@ -62,6 +64,8 @@ static int build_particles(amsph_sim *s)
         status = amsph_host_add_field(&host, AMSPH_FIELD_ACCELERATION);
     if (!status && s->config.fluid.enabled)
         status = amsph_fluid_setup(s, &host);
+    if (!status && s->config.thermal.enabled)
+        status = amsph_thermal_setup(s, &host);
     if (!status)
         status = amsph_particles_upload(s->backend, &host, &s->particles);
     amsph_host_free(&host);
@@ -86,6 +90,8 @@ int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
     AMSPH_CHECK(upload_materials(s));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
+    if (c->thermal.enabled)
+        AMSPH_CHECK(amsph_thermal_start(s));
     AMSPH_CHECK(compute_rates(s, 0.0));
     return keep_last_good(s);
 }
@@ -100,6 +106,8 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->work);
     amsph_buffer_free(s->backend, s->closest);
     amsph_buffer_free(s->backend, s->materials);
+    if (s->config.thermal.enabled)
+        amsph_thermal_free(s);
     memset(s, 0, sizeof *s);
 }
 
@@ -133,6 +141,8 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
             s->dt_limit = "body force";
         }
     }
+    if (s->config.thermal.enabled)
+        amsph_thermal_dt(s, dt, &s->dt_limit);
     if (s->dt_min == 0.0 && isfinite(*dt))
         s->dt_min = s->config.fluid.dt_min > 0.0 ? s->config.fluid.dt_min : 1e-6 * *dt;
     if (*dt < s->dt_min)
@@ -158,6 +168,8 @@ int amsph_sim_step(amsph_sim *s, double dt)
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
+    if (s->config.thermal.enabled)
+        AMSPH_CHECK(amsph_thermal_advance(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     s->time += dt;

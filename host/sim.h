@@ -2,7 +2,8 @@
  * the time step assembled from the case's modules:
  *   no module:   fluid particles fall under gravity (ballistic)
  *   fluid:       weakly compressible SPH (kernels/fluid.cl) with walls,
- *                adaptive dt and run guards. */
+ *                adaptive dt and run guards.
+ *   thermal:     enthalpy, conduction, phase change, radiation (kernels/thermal.cl). */
 #ifndef AMSPH_SIM_H
 #define AMSPH_SIM_H
 
@@ -12,6 +13,27 @@
 #include "particles.h"
 #define AMSPH_SHARED_REAL amsph_real
 #include "fluid_params.h"
+#include "thermal_params.h"
+
+/* Terms of the energy ledger, as the thermal module books them. */
+enum { AMSPH_LEDGER_LASER, AMSPH_LEDGER_RADIATION, AMSPH_LEDGER_WALLS, AMSPH_LEDGER_VISCOUS, AMSPH_LEDGER_TERMS };
+
+/* Time integrals of the heat exchanged by the material (fluid and solid),
+ * J (J/m in 2D): enthalpy now - initial = laser - radiation + walls + viscous. */
+typedef struct {
+    double initial;   /* sum of m h at the start */
+    double laser;     /* absorbed laser energy */
+    double radiation; /* radiated from free surfaces */
+    double walls;     /* given by the Dirichlet walls (negative: taken) */
+    double viscous;   /* viscous dissipation turned into heat */
+} amsph_energy_ledger;
+
+/* Device scratch of the thermal step, one real per particle each. */
+typedef struct {
+    amsph_buffer *enthalpy_start, *rate_start, *temperature_previous;
+    amsph_buffer *wall_temperature; /* mirrored temperature of walls (kernels/thermal.cl) */
+    amsph_buffer *power[AMSPH_LEDGER_TERMS];
+} amsph_thermal_work;
 
 typedef struct {
     amsph_case config;
@@ -22,6 +44,11 @@ typedef struct {
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
+    thermal_params thermal;
+    amsph_buffer *thermal_table; /* kernels/thermal_table.h */
+    amsph_thermal_work thermal_work;
+    amsph_energy_ledger ledger;
+    int thermal_iterations; /* of the last step (midpoint: fixed-point iterations) */
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */
     double time;    /* s */

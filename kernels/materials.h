@@ -6,7 +6,8 @@
 
 #define MATERIAL_DENSITY 0     /* reference density rho0, kg/m^3 */
 #define MATERIAL_SOUND_SPEED 1 /* artificial speed of sound c0, m/s */
-#define MATERIAL_VISCOSITY 2   /* dynamic viscosity mu, Pa s */
+#define MATERIAL_VISCOSITY 2   /* dynamic viscosity mu of the liquid, Pa s */
+#define MATERIAL_MUSHY_VISCOSITY 3 /* mu at liquid fraction 0, Pa s */
 #define MATERIAL_STRIDE 4
 
 #ifdef AMSPH_DEVICE_H
@@ -20,6 +21,14 @@ static inline real material_value(GLOBAL const real *table, int material, int pr
 static inline real reference_density(GLOBAL const real *table, int material)
 {
     return material_value(table, material, MATERIAL_DENSITY);
+}
+
+/* Viscosity ramped through the mushy zone by the liquid fraction s (Russell
+ * 2018 Sec. 3.3): mu = mu_mushy + (mu - mu_mushy) s. */
+static inline real particle_viscosity(GLOBAL const real *table, int material, real s)
+{
+    const real mushy = material_value(table, material, MATERIAL_MUSHY_VISCOSITY);
+    return mushy + (material_value(table, material, MATERIAL_VISCOSITY) - mushy) * s;
 }
 #endif
 

@@ -1,0 +1,33 @@
+/* Host side of the thermal module: the materials' enthalpy tables, the
+ * enthalpy update of a step (explicit, or implicit midpoint by fixed-point
+ * iteration), the diffusion time-step limit and the energy ledger. */
+#ifndef AMSPH_THERMAL_H
+#define AMSPH_THERMAL_H
+
+#include "sim.h"
+#include "thermal_table.h"
+
+/* Adds the module's fields to the host particles. */
+int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h);
+/* On the device, after the first sort: tables, enthalpy from the initial
+ * temperature, the initial state and the ledger's starting energy. */
+int amsph_thermal_start(amsph_sim *s);
+void amsph_thermal_free(amsph_sim *s);
+/* Advances the enthalpy over dt (after the drift and sort) and updates
+ * temperature, liquid fraction, peak temperature, kinds and the ledger. */
+int amsph_thermal_advance(amsph_sim *s, double dt);
+/* Lowers *dt to the diffusion limit diffusion_number rho c h^2 / k (Fuchs et
+ * al. 2022 Eq. 42) over the materials. */
+void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit);
+/* Sum of m h over fluid and solid particles, J (per metre in 2D). */
+int amsph_thermal_energy(amsph_sim *s, double *energy);
+/* |energy change - booked exchanges| over the gross exchange (0 when
+ * nothing was exchanged and nothing changed). */
+int amsph_thermal_ledger_error(amsph_sim *s, double *error);
+
+/* Node table of one material (exposed for tests): temperatures, enthalpies
+ * and conductivities of THERMAL_NODES nodes at most; returns the count. */
+int amsph_thermal_nodes(const amsph_material *m, double *temperature, double *enthalpy,
+                        double *conductivity);
+
+#endif

@@ -1,0 +1,266 @@
+/* Heat transfer with the specific enthalpy h as the state variable:
+ *   dh_a/dt = conduction + viscous heating + (laser - radiation) / rho_a,
+ * and the temperature from h through the material's enthalpy table
+ * (kernels/thermal_table.h: apparent heat capacity with the latent heat
+ * over the mushy interval). Conduction moves m_a dh_a = -m_b dh_b between
+ * every pair, so the enthalpy ledger closes to round-off.
+ *
+ * Walls hold their temperature (Dirichlet); fluid and fixed solid
+ * particles conduct, melt and solidify. A free surface is adiabatic unless
+ * it radiates. */
+#include "device.h"
+#include "kinds.h"
+#include "materials.h"
+#include "neighbours.h"
+#include "smoothing.h"
+#include "thermal_params.h"
+#include "thermal_table.h"
+
+#define STEFAN_BOLTZMANN REAL(5.670374419e-8) /* W/(m^2 K^4) */
+
+static inline real thermal_dot3(const real a[3], const real b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+KERNEL void enthalpy_from_temperature(GLOBAL const int *material, GLOBAL const real *temperature,
+                                      int n, GLOBAL const real *table, GLOBAL real *enthalpy)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        enthalpy[a] = enthalpy_of_temperature(table, material[a], temperature[a]);
+    }
+}
+
+/* Temperature (walls keep theirs), liquid fraction and conductivity from
+ * the enthalpy. A material that does not melt is liquid as fluid and solid
+ * otherwise. */
+KERNEL void thermal_state(GLOBAL const int *kind, GLOBAL const int *material,
+                          GLOBAL const real *enthalpy, int n, GLOBAL const real *table,
+                          GLOBAL real *temperature, GLOBAL real *liquid_fraction,
+                          GLOBAL real *conductivity)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        const int mat = material[a];
+        if (kind[a] != KIND_WALL)
+            temperature[a] = temperature_of_enthalpy(table, mat, enthalpy[a]);
+        const real temp = temperature[a];
+        liquid_fraction[a] = material_melts(table, mat) ? liquid_fraction_of_temperature(table, mat, temp)
+                                                        : (kind[a] == KIND_FLUID ? REAL(1.0) : REAL(0.0));
+        conductivity[a] = conductivity_of_temperature(table, mat, temp);
+    }
+}
+
+/* Walls hold their temperature T_w = T(h_w) (Dirichlet). For conduction a
+ * wall shows the fluid and solid next to it the mirrored temperature
+ *   T~_w = 2 T_w - sum_f T_f W_wf / sum_f W_wf,
+ * the temperature analogue of Adami et al.'s (2012) no-slip ghost velocity:
+ * the profile continues through the boundary with T = T_w on it. A wall
+ * held at T_w alone puts a kink in the profile there, and the Laplacian
+ * across it makes the error first order in dx. */
+KERNEL void wall_temperature(GLOBAL const real *position, GLOBAL const real *temperature,
+                             GLOBAL const real *enthalpy, GLOBAL const int *kind,
+                             GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                             GLOBAL const int *cell_start, GLOBAL const real *table, thermal_params p,
+                             GLOBAL real *ghost_temperature)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real ghost = temperature[a];
+        if (kind[a] == KIND_WALL) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            real sum_w = REAL(0.0), sum_t = REAL(0.0);
+            FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+            {
+                if (kind[b] != KIND_WALL) {
+                    real r_ab[3];
+                    grid_displacement(&g, position, a, b, r_ab);
+                    const real w = smoothing_w(sqrt(thermal_dot3(r_ab, r_ab)), p.h);
+                    sum_w += w;
+                    sum_t += w * temperature[b];
+                }
+            }
+            const real wall = temperature_of_enthalpy(table, material[a], enthalpy[a]);
+            ghost = sum_w > REAL(0.0) ? REAL(2.0) * wall - sum_t / sum_w : wall;
+        }
+        ghost_temperature[a] = ghost;
+    }
+}
+
+/* Conduction of one pair (Cleary & Monaghan 1999; Russell 2018 Eq. 3.45):
+ *   dh_a/dt = sum_b 4 m_b / (rho_a rho_b) k_a k_b / (k_a + k_b) (T_a - T_b)
+ *             (r_ab . grad_a W_ab) / (r_ab^2 + eta^2),
+ * here with V_b = m_b / rho_b and without the 1 / rho_a, which the caller
+ * applies. r_ab . grad_a W_ab < 0, so heat flows from hot to cold (tested:
+ * a perturbation decays). */
+static inline real conduction_pair(real k_a, real k_b, real t_a, real t_b, real v_b,
+                                   real r_dot_grad, real r2, const thermal_params *p)
+{
+    const real k_sum = k_a + k_b;
+    const real k_ab = k_sum > REAL(0.0) ? REAL(4.0) * k_a * k_b / k_sum : REAL(0.0);
+    return v_b * k_ab * (t_a - t_b) * r_dot_grad / (r2 + p->eta2);
+}
+
+/* Viscous heating of one pair (Marrone et al.; Russell 2018 Eq. 3.44):
+ *   (1/rho) tau : grad u = sum_b mu_a mu_b / (mu_a + mu_b) m_b / (rho_a rho_b)
+ *                          pi_ab u_ba . grad_a W_ab,
+ *   pi_ab = 2 (d + 2) u_ba . r_ba / |r_ba|^2,
+ * >= 0 since grad_a W_ab = f r_ab with f < 0. */
+static inline real viscous_heating_pair(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
+                                        const real u_ba[3], const real r_ab[3], real f, real r2,
+                                        const thermal_params *p)
+{
+    const real mu_sum = mu_a + mu_b;
+    if (mu_sum <= REAL(0.0))
+        return REAL(0.0);
+    const real u_dot_r = -thermal_dot3(u_ba, r_ab); /* u_ba . r_ba */
+    const real pi_ab = REAL(2.0) * (AMSPH_DIM + 2) * u_dot_r / (r2 + p->eta2);
+    return mu_a * mu_b / mu_sum * m_b / (rho_a * rho_b) * pi_ab * (-u_dot_r) * f;
+}
+
+/* Radiation from a free surface (Russell 2018 Eq. 3.39), per unit volume:
+ *   s_rad = sigma_B eps (T^4 - T_inf^4) delta,
+ * with the surface delta delta = 2 |grad Gamma| in place of 1 / dz: the
+ * Shepard sum Gamma = sum_b V_b W_ab falls from 1 to about 1/2 across the
+ * outermost particles (there is nothing outside to sum), so twice its
+ * gradient integrates to the surface area (tested on a flat slab). Below
+ * the cut-off |grad Gamma| h the particle is interior. */
+static inline real radiation_loss(real temp, real emissivity, real grad_gamma, const thermal_params *p)
+{
+    if (grad_gamma * p->h < p->surface_cutoff)
+        return REAL(0.0);
+    const real t2 = temp * temp, ambient2 = p->ambient_temperature * p->ambient_temperature;
+    return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * REAL(2.0) * grad_gamma;
+}
+
+/* The enthalpy rate of every particle (walls too: their rate is the heat
+ * they give the material, booked in the ledger, never applied) and the
+ * powers the energy ledger integrates, per particle, in W:
+ *   power_laser     m_a s_laser / rho_a          absorbed by fluid and solid
+ *   power_radiation m_a s_rad / rho_a            lost by fluid and solid
+ *   power_wall      -m_w dh_w/dt of a wall       given by the wall (Dirichlet)
+ *   power_viscous   m_a (1/rho) tau : grad u     heating of the fluid
+ * Conduction uses the walls' mirrored temperature (wall_temperature) on
+ * both sides of a pair. laser_power is the absorbed laser power per volume
+ * (laser module; zeros without a laser). wall_velocity is the no-slip ghost velocity of walls
+ * (read only with viscous heating). */
+KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
+                      GLOBAL const real *wall_velocity, GLOBAL const real *density,
+                      GLOBAL const real *mass, GLOBAL const real *temperature,
+                      GLOBAL const real *ghost_temperature,
+                      GLOBAL const real *conductivity, GLOBAL const real *liquid_fraction,
+                      GLOBAL const real *laser_power, GLOBAL const int *kind,
+                      GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                      GLOBAL const int *cell_start, GLOBAL const real *materials,
+                      GLOBAL const real *table, thermal_params p, GLOBAL real *enthalpy_rate,
+                      GLOBAL real *power_laser, GLOBAL real *power_radiation,
+                      GLOBAL real *power_wall, GLOBAL real *power_viscous)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        const int wall_a = kind[a] == KIND_WALL;
+        const int heats = p.viscous_heating && kind[a] == KIND_FLUID;
+        const real rho_a = density[a], t_a = ghost_temperature[a], k_a = conductivity[a];
+        const real mu_a = heats ? particle_viscosity(materials, material[a], liquid_fraction[a]) : REAL(0.0);
+        real conduction = REAL(0.0), viscous = REAL(0.0);
+        real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real r2 = thermal_dot3(r_ab, r_ab);
+            if (b != a && r2 < SUPPORT_OVER_H * SUPPORT_OVER_H * p.h * p.h) {
+                const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
+                const real v_b = mass[b] / density[b];
+                conduction += conduction_pair(k_a, conductivity[b], t_a, ghost_temperature[b], v_b, f * r2, r2, &p);
+                for (int d = 0; d < 3; ++d)
+                    grad_gamma[d] += v_b * f * r_ab[d];
+                if (heats) {
+                    const int fluid_b = kind[b] == KIND_FLUID;
+                    real u_ba[3];
+                    for (int d = 0; d < 3; ++d)
+                        u_ba[d] = (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]) - velocity[3 * a + d];
+                    const real mu_b = particle_viscosity(materials, material[b], liquid_fraction[b]);
+                    viscous += viscous_heating_pair(mu_a, mu_b, mass[b], rho_a, density[b], u_ba, r_ab, f, r2, &p);
+                }
+            }
+        }
+        conduction /= rho_a;
+        const real m_a = mass[a];
+        const real emissivity = thermal_material(table, material[a])[THERMAL_EMISSIVITY];
+        const real radiation = p.radiation && !wall_a
+                                   ? radiation_loss(temperature[a], emissivity, sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p) / rho_a
+                                   : REAL(0.0);
+        const real laser = wall_a ? REAL(0.0) : laser_power[a] / rho_a;
+        enthalpy_rate[a] = conduction + viscous + laser - radiation;
+        power_laser[a] = m_a * laser;
+        power_radiation[a] = m_a * radiation;
+        power_wall[a] = wall_a ? -m_a * conduction : REAL(0.0);
+        power_viscous[a] = m_a * viscous;
+    }
+}
+
+/* h = h_start + dt_start rate_start + dt_now rate for fluid and solid:
+ * explicit Euler (dt_start = 0) or one trapezoidal midpoint iterate
+ * (dt_start = dt_now = dt / 2; Russell 2018 Alg. 3.1). */
+KERNEL void advance_enthalpy(GLOBAL const int *kind, GLOBAL const real *enthalpy_start,
+                             GLOBAL const real *rate_start, GLOBAL const real *rate, int n,
+                             real dt_start, real dt_now, GLOBAL real *enthalpy)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        if (kind[a] != KIND_WALL)
+            enthalpy[a] = enthalpy_start[a] + dt_start * rate_start[a] + dt_now * rate[a];
+    }
+}
+
+/* |T - T_previous| per particle, for the convergence test of the midpoint
+ * iteration. */
+KERNEL void temperature_change(GLOBAL const real *temperature, GLOBAL const real *previous, int n,
+                               GLOBAL real *change)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        change[a] = fabs(temperature[a] - previous[a]);
+    }
+}
+
+/* m h for fluid and solid, 0 for walls: the enthalpy of the material. */
+KERNEL void material_enthalpy(GLOBAL const int *kind, GLOBAL const real *mass,
+                              GLOBAL const real *enthalpy, int n, GLOBAL real *out)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        out[a] = kind[a] == KIND_WALL ? REAL(0.0) : mass[a] * enthalpy[a];
+    }
+}
+
+/* After a step: the peak temperature so far, and, with the fluid module,
+ * the phase rule: a fixed solid of a melting material whose liquid fraction
+ * rises above 0 becomes fluid (at rest); a fluid particle of a melting
+ * material back at liquid fraction 0 becomes a fixed solid and stops. The
+ * mushy zone is fluid, its viscosity ramped by the liquid fraction. */
+KERNEL void finish_thermal_step(GLOBAL const int *material, GLOBAL const real *temperature,
+                                GLOBAL const real *liquid_fraction, int n, GLOBAL const real *table,
+                                thermal_params p, GLOBAL int *kind, GLOBAL real *velocity,
+                                GLOBAL real *peak_temperature)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        peak_temperature[a] = fmax(peak_temperature[a], temperature[a]);
+        if (p.phase_change_kinds && material_melts(table, material[a])) {
+            const real s = liquid_fraction[a];
+            if (kind[a] == KIND_SOLID && s > REAL(0.0)) {
+                kind[a] = KIND_FLUID;
+            } else if (kind[a] == KIND_FLUID && s <= REAL(0.0)) {
+                kind[a] = KIND_SOLID;
+                for (int d = 0; d < 3; ++d)
+                    velocity[3 * a + d] = REAL(0.0);
+            }
+        }
+    }
+}
