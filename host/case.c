@@ -246,7 +246,7 @@ static const key_spec specs[] = {
      .doc = "Temperature T_inf the surfaces radiate to"},
     {.section = SEC_THERMAL, .key = "viscous_heating", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = THERMAL(viscous_heating), .rule = "needs `fluid`",
-     .doc = "Viscous dissipation heats the fluid (Russell Eq. 3.44)"},
+     .doc = "Viscous dissipation tau : grad u heats the fluid (renormalised velocity gradient)"},
     {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
      .doc = "Materials, referred to by name from `geometry`"},

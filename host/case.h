@@ -114,7 +114,7 @@ typedef struct {
     double diffusion_number;    /* dt <= diffusion_number rho c h^2 / k, default 0.1 */
     int radiation;              /* 1: free surfaces radiate (Russell Eq. 3.39), default 0 */
     double ambient_temperature; /* T_inf of the radiation, K, default 300 */
-    int viscous_heating;        /* 1: tau : grad u heats the fluid (Russell Eq. 3.44), default 0 */
+    int viscous_heating;        /* 1: tau : grad u heats the fluid (kernels/thermal.cl), default 0 */
 } amsph_thermal_settings;
 
 typedef struct {

@@ -26,7 +26,12 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->dx = (amsph_real)s->config.dx;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
-    return amsph_host_add_field(h, AMSPH_FIELD_SHEPARD);
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
+    /* liquid until the thermal module says otherwise (it sets the field) */
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LIQUID_FRACTION));
+    for (int i = 0; i < h->n; ++i)
+        amsph_host_real(h, AMSPH_FIELD_LIQUID_FRACTION)[i] = 1;
+    return 0;
 }
 
 static amsph_arg field(amsph_sim *s, amsph_field_id f)
@@ -72,7 +77,8 @@ int amsph_fluid_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
                         field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
                         field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
-                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                        field(s, AMSPH_FIELD_LIQUID_FRACTION), field(s, AMSPH_FIELD_KIND),
+                        field(s, AMSPH_FIELD_MATERIAL),
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION));

@@ -210,13 +210,15 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
  * viscosity. Pressure gradient (Russell 2018 Eq. 3.17):
  *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
  *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
- * plus, if set, the tensile correction (above). Walls enter with their Adami
+ * plus, if set, the tensile correction (above). The viscosity follows the
+ * liquid fraction through the mushy zone (materials.h). Walls enter with their Adami
  * state; viscosity sees their ghost velocity (no-slip) or nothing (free-slip). */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *mass,
-                         GLOBAL const real *gamma, GLOBAL const int *kind,
-                         GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                         GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
+                         GLOBAL const int *kind, GLOBAL const int *material,
+                         GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
                          GLOBAL real *acceleration)
 {
@@ -228,7 +230,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             grid_cell_coords(&g, cell[a], cc);
             const int mat_a = material[a];
             const real rho_a = density[a], p_a = pressure[a];
-            const real mu_a = material_value(materials, mat_a, MATERIAL_VISCOSITY);
+            const real mu_a = particle_viscosity(materials, mat_a, liquid_fraction[a]);
             const real c_a = material_value(materials, mat_a, MATERIAL_SOUND_SPEED);
             const int renormalised = p.pressure_gradient == PRESSURE_RENORMALISED;
             const real gamma_a = renormalised ? gamma[a] : REAL(1.0);
@@ -256,7 +258,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                 real visc_radial = REAL(0.0); /* multiplies r_ab */
                 if (fluid_b || p.wall_slip == WALL_NO_SLIP) {
                     if (p.viscosity == VISCOSITY_LAMINAR) {
-                        const real mu_b = material_value(materials, mat_b, MATERIAL_VISCOSITY);
+                        const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
                         visc_scalar = laminar_viscosity_factor(mu_a, mu_b, m_b, rho_a, rho_b, f * r2, r2, &p);
                     } else {
                         const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);

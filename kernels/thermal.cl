@@ -103,21 +103,53 @@ static inline real conduction_pair(real k_a, real k_b, real t_a, real t_b, real 
     return v_b * k_ab * (t_a - t_b) * r_dot_grad / (r2 + p->eta2);
 }
 
-/* Viscous heating of one pair (Marrone et al.; Russell 2018 Eq. 3.44):
- *   (1/rho) tau : grad u = sum_b mu_a mu_b / (mu_a + mu_b) m_b / (rho_a rho_b)
- *                          pi_ab u_ba . grad_a W_ab,
- *   pi_ab = 2 (d + 2) u_ba . r_ba / |r_ba|^2,
- * >= 0 since grad_a W_ab = f r_ab with f < 0. */
-static inline real viscous_heating_pair(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
-                                        const real u_ba[3], const real r_ab[3], real f, real r2,
-                                        const thermal_params *p)
+/* Viscous dissipation of a Newtonian fluid, per unit volume (the
+ * tau : grad u of Russell 2018 Eqs. 3.37 and 3.43, Stokes' hypothesis):
+ *   Phi = 2 mu (D : D - (tr D)^2 / d),  D = (G + G^T) / 2,
+ * with the velocity gradient G = G_raw M^-1 renormalised by the moment
+ * matrix (Bonet & Lok 1999),
+ *   G_raw = sum_b V_b (u_b - u_a) (x) grad_a W_ab,  M = sum_b V_b (r_b - r_a) (x) grad_a W_ab,
+ * exact for a linear velocity field. Russell's pairwise Eq. 3.44 gives
+ * only 0.83 mu gamma^2 for a simple shear on a lattice (quintic, h = dx;
+ * 0.75 for Wendland C2 at h = 1.2 dx), because the lattice neighbours along
+ * the axes carry no x^2 y^2 moment. */
+static inline real viscous_dissipation(const real g_raw[3][3], const real m[3][3], real mu)
 {
-    const real mu_sum = mu_a + mu_b;
-    if (mu_sum <= REAL(0.0))
-        return REAL(0.0);
-    const real u_dot_r = -thermal_dot3(u_ba, r_ab); /* u_ba . r_ba */
-    const real pi_ab = REAL(2.0) * (AMSPH_DIM + 2) * u_dot_r / (r2 + p->eta2);
-    return mu_a * mu_b / mu_sum * m_b / (rho_a * rho_b) * pi_ab * (-u_dot_r) * f;
+    real inverse[3][3] = {{REAL(0.0)}};
+#if AMSPH_DIM == 2
+    const real det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    inverse[0][0] = m[1][1] / det;
+    inverse[0][1] = -m[0][1] / det;
+    inverse[1][0] = -m[1][0] / det;
+    inverse[1][1] = m[0][0] / det;
+#else
+    const real det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            inverse[j][i] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / det;
+        }
+#endif
+    if (!isfinite(det) || fabs(det) < REAL(1e-6))
+        return REAL(0.0); /* too few neighbours to know the gradient */
+    real d[3][3], trace = REAL(0.0), dd = REAL(0.0);
+    real g[3][3];
+    for (int i = 0; i < AMSPH_DIM; ++i)
+        for (int j = 0; j < AMSPH_DIM; ++j) {
+            g[i][j] = REAL(0.0);
+            for (int k = 0; k < AMSPH_DIM; ++k)
+                g[i][j] += g_raw[i][k] * inverse[k][j];
+        }
+    for (int i = 0; i < AMSPH_DIM; ++i)
+        for (int j = 0; j < AMSPH_DIM; ++j) {
+            d[i][j] = REAL(0.5) * (g[i][j] + g[j][i]);
+            dd += d[i][j] * d[i][j];
+        }
+    for (int i = 0; i < AMSPH_DIM; ++i)
+        trace += d[i][i];
+    return REAL(2.0) * mu * (dd - trace * trace / AMSPH_DIM);
 }
 
 /* Radiation from a free surface (Russell 2018 Eq. 3.39), per unit volume:
@@ -141,7 +173,7 @@ static inline real radiation_loss(real temp, real emissivity, real grad_gamma, c
  *   power_laser     m_a s_laser / rho_a          absorbed by fluid and solid
  *   power_radiation m_a s_rad / rho_a            lost by fluid and solid
  *   power_wall      -m_w dh_w/dt of a wall       given by the wall (Dirichlet)
- *   power_viscous   m_a (1/rho) tau : grad u     heating of the fluid
+ *   power_viscous   m_a Phi / rho_a              heating of the fluid
  * Conduction uses the walls' mirrored temperature (wall_temperature) on
  * both sides of a pair. laser_power is the absorbed laser power per volume
  * (laser module; zeros without a laser). wall_velocity is the no-slip ghost velocity of walls
@@ -165,9 +197,9 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const int wall_a = kind[a] == KIND_WALL;
         const int heats = p.viscous_heating && kind[a] == KIND_FLUID;
         const real rho_a = density[a], t_a = ghost_temperature[a], k_a = conductivity[a];
-        const real mu_a = heats ? particle_viscosity(materials, material[a], liquid_fraction[a]) : REAL(0.0);
-        real conduction = REAL(0.0), viscous = REAL(0.0);
+        real conduction = REAL(0.0);
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        real grad_u[3][3] = {{REAL(0.0)}}, moment[3][3] = {{REAL(0.0)}};
         FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
         {
             real r_ab[3];
@@ -181,15 +213,20 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                     grad_gamma[d] += v_b * f * r_ab[d];
                 if (heats) {
                     const int fluid_b = kind[b] == KIND_FLUID;
-                    real u_ba[3];
-                    for (int d = 0; d < 3; ++d)
-                        u_ba[d] = (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]) - velocity[3 * a + d];
-                    const real mu_b = particle_viscosity(materials, material[b], liquid_fraction[b]);
-                    viscous += viscous_heating_pair(mu_a, mu_b, mass[b], rho_a, density[b], u_ba, r_ab, f, r2, &p);
+                    for (int i = 0; i < 3; ++i) {
+                        const real u_ba = (fluid_b ? velocity[3 * b + i] : wall_velocity[3 * b + i]) - velocity[3 * a + i];
+                        for (int j = 0; j < 3; ++j) {
+                            grad_u[i][j] += v_b * u_ba * f * r_ab[j];
+                            moment[i][j] -= v_b * r_ab[i] * f * r_ab[j];
+                        }
+                    }
                 }
             }
         }
         conduction /= rho_a;
+        const real viscous =
+            heats ? viscous_dissipation(grad_u, moment, particle_viscosity(materials, material[a], liquid_fraction[a])) / rho_a
+                  : REAL(0.0);
         const real m_a = mass[a];
         const real emissivity = thermal_material(table, material[a])[THERMAL_EMISSIVITY];
         const real radiation = p.radiation && !wall_a

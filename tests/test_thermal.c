@@ -373,6 +373,56 @@ static void test_phase_rule(void)
     amsph_backend_destroy(b);
 }
 
+/* Viscous heating in the steady Couette flow u = V y / L: the
+ * dissipation is mu (V / L)^2 per volume (Russell Eq. 3.44 must give it
+ * in the interior, away from the walls). */
+static void test_viscous_heating(void)
+{
+    amsph_case c;
+    if (load("couette_2d.yaml", &c))
+        return;
+    const double V = 2.5e-5, L = 1e-3, mu = 1e-3, rho = 1000;
+    c.thermal.enabled = 1;
+    c.thermal.viscous_heating = 1;
+    c.thermal.diffusion_number = 0.1;
+    c.materials[0].specific_heat = c.materials[0].liquid_specific_heat = (amsph_property){.n = 1, .v = {4000}};
+    c.materials[0].conductivity = c.materials[0].liquid_conductivity = (amsph_property){.n = 1, .v = {0.6}};
+    for (int k = 0; k < c.n_geometry; ++k) {
+        c.geometry[k].has_temperature = 1;
+        c.geometry[k].temperature = 300;
+    }
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    for (int i = 0; i < h.n; ++i)
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID)
+            amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i] =
+                (amsph_real)(V * amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + 1] / L);
+    CHECK_OK(amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0, (size_t)h.n * 3 * sizeof(amsph_real),
+                          h.data[AMSPH_FIELD_VELOCITY]));
+    amsph_host_free(&h);
+    CHECK_OK(amsph_sim_step(&s, 1e-6));
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    double sum = 0.0;
+    int count = 0;
+    for (int i = 0; i < h.n; ++i) {
+        const double y = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + 1];
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID && y > 0.2 * L && y < 0.8 * L) {
+            sum += amsph_host_real(&h, AMSPH_FIELD_ENTHALPY_RATE)[i];
+            ++count;
+        }
+    }
+    const double exact = mu * (V / L) * (V / L) / rho;
+    CHECK(count > 0 && fabs(sum / count - exact) < 0.02 * exact, "viscous heating %.5g W/kg, mu (V/L)^2 / rho = %.5g",
+          sum / count, exact);
+    CHECK(s.ledger.viscous > 0.0, "the ledger books the viscous heat: %g J", s.ledger.viscous);
+    amsph_host_free(&h);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 /* Both backends give the same temperatures on the coarse square. */
 static void test_backends_agree(void)
 {
@@ -416,6 +466,7 @@ int main(void)
     test_stefan();
     test_radiation();
     test_phase_rule();
+    test_viscous_heating();
     test_backends_agree();
     return testing_finish();
 }
