@@ -8,7 +8,12 @@ particle-steps per second, error against the known answer and observed order.
 CASE is one of: poiseuille, couette (L2 velocity error relative to the peak
 speed, largest over the output times; Morris, Fox & Zhu 1997), hydrostatic
 (largest pressure error below the top tenth at the end, relative to rho g H)
-and dambreak, dambreak_3d (largest drift of the fluid volume sum m/rho).
+and dambreak, dambreak_3d (largest drift of the fluid volume sum m/rho);
+conduction, interface (largest temperature error over the output times,
+relative to the 1 K step; Fourier series and the erf solution) and stefan
+(largest relative error of the melting front against Neumann's solution).
+The 1D strips (interface, stefan) are resized to 12 dx across, so that the
+periodic axis spans three kernel supports at every dx.
 Needs numpy and h5py (Debian: python3-numpy python3-h5py)."""
 import argparse, glob, math, os, re, subprocess, tempfile, time
 
@@ -68,19 +73,73 @@ def hydrostatic_error(outdir, g=9.81, H=1.0, rho0=1000.0):
     return np.max(np.abs(s["pressure"][below] - exact)) / (rho0 * g * H)
 
 
+def temperature_error(outdir, exact):
+    worst = 0.0
+    for t, s in snapshots(outdir):
+        if t == 0:
+            continue
+        solid = s["kind"] != 1
+        x = s["position"][solid]
+        worst = max(worst, np.max(np.abs(s["temperature"][solid] - exact(x[:, 0], x[:, 1], t))))
+    return worst
+
+
+def square(x, y, t):
+    T = np.ones_like(x)
+    for m in range(1, 200, 2):
+        for n in range(1, 200, 2):
+            T -= 16 / (math.pi**2 * m * n) * np.sin(m * math.pi * x) * np.sin(n * math.pi * y) * \
+                math.exp(-math.pi**2 * (m * m + n * n) * t)
+    return T
+
+
+def interface(x, y, t):
+    erf = np.vectorize(math.erf)
+    contact = 1 / (1 + math.sqrt(10))
+    return np.where(x < 0, contact + (1 - contact) * erf(-x / (2 * math.sqrt(t))),
+                    contact * (1 - erf(x / (2 * math.sqrt(10 * t)))))
+
+
+def stefan_error(outdir, stefan=1.0):
+    lo, hi = 1e-3, 3.0
+    for _ in range(100):
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if mid * math.exp(mid * mid) * math.erf(mid) > stefan / math.sqrt(math.pi) else (mid, hi)
+    lam, worst = (lo + hi) / 2, 0.0
+    for t, s in snapshots(outdir):
+        if t == 0:
+            continue
+        solid = s["kind"] != 1
+        x, frac = s["position"][solid, 0], s["liquid_fraction"][solid]
+        columns = np.unique(np.round(x, 12))
+        mean = np.array([frac[np.abs(x - c) < 1e-12].mean() for c in columns])
+        k = np.argmax(mean < 0.5)
+        front = columns[k - 1] + (mean[k - 1] - 0.5) / (mean[k - 1] - mean[k]) * (columns[k] - columns[k - 1])
+        exact = 2 * lam * math.sqrt(t)
+        worst = max(worst, abs(front - exact) / exact)
+    return worst
+
+
 CASES = {
     "poiseuille": ("cases/validation/poiseuille_2d.yaml", lambda d: channel_error(d, poiseuille, 2.5e-5)),
     "couette": ("cases/validation/couette_2d.yaml", lambda d: channel_error(d, couette, 2.5e-5)),
     "dambreak": ("cases/validation/dambreak_2d.yaml", volume_drift),
     "hydrostatic": ("cases/validation/hydrostatic_2d.yaml", hydrostatic_error),
     "dambreak_3d": ("cases/validation/dambreak_3d.yaml", volume_drift),
+    "conduction": ("cases/validation/conduction_2d.yaml", lambda d: temperature_error(d, square)),
+    "interface": ("cases/validation/conduction_interface_1d.yaml", lambda d: temperature_error(d, interface)),
+    "stefan": ("cases/validation/stefan_1d.yaml", stefan_error),
 }
+STRIPS = ("interface", "stefan")
 
 
-def run(amsph, case_text, dx, backend, work):
+def run(amsph, case_text, dx, backend, work, strip):
     path = os.path.join(work, f"case_{dx}.yaml")
+    text = re.sub(r"^dx: .*$", f"dx: {dx}", case_text, flags=re.M)
+    if strip:
+        text = text.replace(", 0.1]", f", {12 * dx:g}]")
     with open(path, "w") as f:
-        f.write(re.sub(r"^dx: .*$", f"dx: {dx}", case_text, flags=re.M))
+        f.write(text)
     outdir = os.path.join(work, f"out_{dx}")
     start = time.monotonic()
     proc = subprocess.run([amsph, "run", path, "-o", outdir, "--backend", backend],
@@ -108,7 +167,7 @@ def main():
     previous = None
     with tempfile.TemporaryDirectory() as work:
         for dx in sorted(args.dx, reverse=True):
-            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work)
+            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work, args.case in STRIPS)
             error = measure(outdir)
             order = ""
             if previous and error > 0 and previous[1] > 0:
