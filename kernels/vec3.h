@@ -1,0 +1,13 @@
+/* Small helpers on 3-vectors stored as real[3] (kernels use scalar
+ * components, not OpenCL vector types; see device.h). */
+#ifndef AMSPH_VEC3_H
+#define AMSPH_VEC3_H
+
+#include "device.h"
+
+static inline real dot3(const real a[3], const real b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+#endif
