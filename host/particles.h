@@ -29,7 +29,8 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(LIQUID_FRACTION, "liquid_fraction", AMSPH_TYPE_REAL, 1, "1", AMSPH_FIELD_OUTPUT)             \
     X(DENSITY_RATE, "density_rate", AMSPH_TYPE_REAL, 1, "kg/(m^3 s)", 0)                           \
     X(SHEPARD, "shepard", AMSPH_TYPE_REAL, 1, "1", 0)                                              \
-    X(WALL_VELOCITY, "wall_velocity", AMSPH_TYPE_REAL, 3, "m/s", 0)
+    X(WALL_VELOCITY, "wall_velocity", AMSPH_TYPE_REAL, 3, "m/s", 0)                                \
+    X(LASER_POWER, "laser_power", AMSPH_TYPE_REAL, 1, "W/m^3", AMSPH_FIELD_OUTPUT)
 
 #define AMSPH_FIELD_ENUM(id, name, type, comps, unit, flags) AMSPH_FIELD_##id,
 typedef enum { AMSPH_FIELDS(AMSPH_FIELD_ENUM) AMSPH_FIELD_COUNT } amsph_field_id;

@@ -7,6 +7,7 @@
 #include "error.h"
 #include "fluid.h"
 #include "guards.h"
+#include "laser.h"
 #include "materials.h"
 #include "scene.h"
 
@@ -32,14 +33,17 @@ static int upload_materials(amsph_sim *s)
     return amsph_upload(s->backend, s->materials, 0, bytes, table);
 }
 
-/* Density over the step dt (fluid module), then the acceleration of every
- * particle, from the state after the drift. */
+/* Density over the step dt (fluid module), the absorbed laser power at the
+ * step's end time (laser module, with the new volumes), then the
+ * acceleration of every particle, from the state after the drift. */
 static int compute_rates(amsph_sim *s, double dt)
 {
-    if (s->config.fluid.enabled) {
+    if (s->config.fluid.enabled)
         AMSPH_CHECK(amsph_fluid_density(s, dt));
+    if (s->config.laser.enabled)
+        AMSPH_CHECK(amsph_laser_absorb(s, s->time + dt));
+    if (s->config.fluid.enabled)
         return amsph_fluid_forces(s);
-    }
     amsph_particles *p = &s->particles;
     const double *g = s->config.gravity;
     return AMSPH_LAUNCH(s->backend, "body_force", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
@@ -62,6 +66,8 @@ static int build_particles(amsph_sim *s)
         status = amsph_host_add_field(&host, AMSPH_FIELD_ACCELERATION);
     if (!status && s->config.fluid.enabled)
         status = amsph_fluid_setup(s, &host);
+    if (!status && s->config.laser.enabled)
+        status = amsph_laser_setup(s, &host);
     if (!status)
         status = amsph_particles_upload(s->backend, &host, &s->particles);
     amsph_host_free(&host);
@@ -100,6 +106,9 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->work);
     amsph_buffer_free(s->backend, s->closest);
     amsph_buffer_free(s->backend, s->materials);
+    amsph_buffer_free(s->backend, s->laser.bin_weight);
+    amsph_buffer_free(s->backend, s->laser.bin_volume);
+    amsph_buffer_free(s->backend, s->laser.bin_power);
     memset(s, 0, sizeof *s);
 }
 

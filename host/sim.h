@@ -2,7 +2,9 @@
  * the time step assembled from the case's modules:
  *   no module:   fluid particles fall under gravity (ballistic)
  *   fluid:       weakly compressible SPH (kernels/fluid.cl) with walls,
- *                adaptive dt and run guards. */
+ *                adaptive dt and run guards;
+ *   laser:       the absorbed laser power of every particle (kernels/laser.cl),
+ *                after every drift. */
 #ifndef AMSPH_SIM_H
 #define AMSPH_SIM_H
 
@@ -12,6 +14,17 @@
 #include "particles.h"
 #define AMSPH_SHARED_REAL amsph_real
 #include "fluid_params.h"
+#include "laser_params.h"
+
+/* The laser module's state (host/laser.h). */
+typedef struct {
+    laser_params params;      /* the beam at the last absorption */
+    int columns, nodes;       /* bin columns and nodes (volumetric absorption) */
+    amsph_buffer *bin_weight; /* per node: sum of PIC weights */
+    amsph_buffer *bin_volume; /* per node: sum of weighted particle volumes, m^3 (2D: m^2) */
+    amsph_buffer *bin_power;  /* per node: absorbed power, W (2D: W/m) */
+    double absorbed_power;    /* absorbed by all particles at the last absorption, W (2D: W/m) */
+} amsph_laser_state;
 
 typedef struct {
     amsph_case config;
@@ -22,6 +35,7 @@ typedef struct {
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
+    amsph_laser_state laser;
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */
     double time;    /* s */
