@@ -90,15 +90,15 @@ static inline int laser_node_number(const laser_params *p, const int i[AMSPH_DIM
     return i[AMSPH_DIM - 1] + p->depth_nodes * column;
 }
 
-/* Particle-in-cell (cloud-in-cell) weight of a particle at bin coordinates u
- * for node i: Russell 2018 §3.2.2, w = (1 - |C_x - P_x|)(1 - |C_y - P_y|) in
- * bin units, multilinear in d dimensions; the weights of a particle over
- * its 2^d nodes sum to 1. */
-static inline real laser_pic_weight(const real u[AMSPH_DIM], const int i[AMSPH_DIM])
+/* Particle-in-cell (cloud-in-cell) weight of a particle at `offset` (beam
+ * frame, bin units) from a node: Russell 2018 §3.2.2,
+ * w = (1 - |C_x - P_x|)(1 - |C_y - P_y|), multilinear in d dimensions; the
+ * weights of a particle over its 2^d nodes sum to 1. */
+static inline real laser_pic_weight(const real offset[AMSPH_DIM])
 {
     real w = REAL(1.0);
     for (int k = 0; k < AMSPH_DIM; ++k)
-        w *= fmax(REAL(0.0), REAL(1.0) - fabs(u[k] - (real)i[k]));
+        w *= fmax(REAL(0.0), REAL(1.0) - fabs(offset[k]));
     return w;
 }
 
@@ -123,7 +123,8 @@ static inline void laser_cell_near(const grid_geometry *g, const real x[3], int 
  * bin"): node n gathers, over the particles p around it,
  *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
  * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
- * the host keeps within one cell size: the 3^d cells around hold them all. */
+ * the host keeps within one cell size: the 3^d cells around hold them all;
+ * the others are passed over by their distance. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, grid_geometry g,
                                  GLOBAL const int *cell_start, laser_params p, int nodes,
@@ -147,15 +148,21 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         }
         int cc[3];
         laser_cell_near(&g, x, cc);
+        const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
         FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
         {
-            real q[AMSPH_DIM], u[AMSPH_DIM];
-            laser_beam_coords(&g, &p, axis, position, b, q);
-            laser_bin_coords(&p, q, u);
-            const real w = laser_pic_weight(u, i);
-            sum_w += w;
-            sum_wv += w * mass[b] / density[b];
+            real r[3];
+            for (int d = 0; d < 3; ++d)
+                r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
+            if (dot3(r, r) < reach2) {
+                real offset[AMSPH_DIM];
+                for (int k = 0; k < AMSPH_DIM; ++k)
+                    offset[k] = dot3(r, axis[k]) / p.bin_size;
+                const real w = laser_pic_weight(offset);
+                sum_w += w;
+                sum_wv += w * mass[b] / density[b];
+            }
         }
         bin_weight[node] = sum_w;
         bin_volume[node] = sum_wv;
@@ -203,7 +210,8 @@ KERNEL void laser_absorb_columns(GLOBAL const real *bin_volume, laser_params p, 
 /* Step 3 (Russell 2018 §3.2.2, last two steps): particle a takes from each
  * of its 2^d nodes n the share of the node's power its weight gave it,
  *   P_a = sum_n P_n w_an / bin_weight[n],   laser_power_a = P_a / V_a,
- * so the particles absorb exactly what the bins did. */
+ * so the particles absorb what the bins did (to rounding: w_an here comes
+ * from the beam coordinates, in step 1 from the offset to the node). */
 KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *mass,
                                GLOBAL const real *density, int n, grid_geometry g, laser_params p,
                                GLOBAL const real *bin_weight, GLOBAL const real *bin_power,
@@ -222,11 +230,14 @@ KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *m
         real power = REAL(0.0);
         for (int corner = 0; corner < (1 << AMSPH_DIM); ++corner) {
             int i[AMSPH_DIM];
-            for (int k = 0; k < AMSPH_DIM; ++k)
+            real offset[AMSPH_DIM];
+            for (int k = 0; k < AMSPH_DIM; ++k) {
                 i[k] = base[k] + ((corner >> k) & 1);
+                offset[k] = u[k] - (real)i[k];
+            }
             const int node = laser_node_number(&p, i);
             if (node >= 0 && bin_weight[node] > REAL(0.0))
-                power += bin_power[node] * laser_pic_weight(u, i) / bin_weight[node];
+                power += bin_power[node] * laser_pic_weight(offset) / bin_weight[node];
         }
         laser_power[a] = power * density[a] / mass[a];
         absorbed[a] = power;
@@ -256,13 +267,17 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         real grad[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        const real support2 = SUPPORT_OVER_H * SUPPORT_OVER_H * h * h;
         FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
         {
             real r_ab[3];
             grid_displacement(&g, position, a, b, r_ab);
-            const real f = smoothing_grad_factor(sqrt(dot3(r_ab, r_ab)), h) * mass[b] / density[b];
-            for (int d = 0; d < 3; ++d)
-                grad[d] += f * r_ab[d];
+            const real r2 = dot3(r_ab, r_ab);
+            if (r2 < support2) {
+                const real f = smoothing_grad_factor(sqrt(r2), h) * mass[b] / density[b];
+                for (int d = 0; d < 3; ++d)
+                    grad[d] += f * r_ab[d];
+            }
         }
         real axis[AMSPH_DIM][3];
         laser_frame(&p, axis);
