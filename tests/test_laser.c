@@ -465,9 +465,38 @@ static void test_surface(const char *file, amsph_kernel_type kernel, double tole
           worst / peak);
 }
 
+/* ---- the hook in the time step --------------------------------------------- */
+
+/* laser_power is a particle field from the start and follows the schedule
+ * at the end of every step: the static slab (one step per target time)
+ * with ramps of 0.4 ms after on (t = 0) and before off (1 ms). */
+static void test_hook(void)
+{
+    amsph_case c;
+    if (load_slab("laser_slab_2d.yaml", 5e-5, &c))
+        return;
+    c.laser.ramp_time = 4e-4;
+    const double full = incident_power(&c) * (1.0 - exp(-c.laser.absorption_coefficient * 5e-4));
+    amsph_sim s;
+    amsph_backend *b = testing_backend(0);
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK(s.particles.field[AMSPH_FIELD_LASER_POWER] != NULL, "no laser_power field");
+    static const double times[][2] = {{0.0, 0.0}, {1e-4, 0.25}, {5e-4, 1.0}, {8e-4, 0.5}, {1e-3, 0.0}};
+    for (size_t k = 0; k < sizeof times / sizeof times[0]; ++k) {
+        if (k > 0)
+            CHECK_OK(amsph_sim_advance(&s, times[k][0], NULL, NULL));
+        CHECK(fabs(s.laser.absorbed_power - times[k][1] * full) < 1e-5 * full,
+              "at t = %g s the slab absorbs %g W/m, expected %g of %g W/m", s.time, s.laser.absorbed_power,
+              times[k][1], full);
+    }
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 int main(void)
 {
     test_schedule();
+    test_hook();
     test_reference(random_case_2d, "random 2D");
     test_reference(random_case_3d, "random 3D, periodic seam");
     test_slab("laser_slab_2d.yaml");
