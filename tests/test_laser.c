@@ -493,10 +493,28 @@ static void test_hook(void)
     amsph_backend_destroy(b);
 }
 
+/* Bins wider than the grid's cells over sqrt(d) cannot gather their
+ * particles from the 3^d cells around: the run must not start. */
+static void test_bins_too_large(void)
+{
+    amsph_case c;
+    if (load_slab("laser_slab_3d.yaml", 5e-5, &c))
+        return;
+    c.laser.bin_size = 2.0 * c.dx; /* 2 sqrt(3) dx > the support 2.4 dx */
+    amsph_sim s;
+    amsph_backend *b = testing_backend(0);
+    CHECK(amsph_sim_create(&c, b, &s) != 0, "a run with bins of 2 dx started");
+    CHECK(strstr(amsph_last_error(), "laser.bin_size") && strstr(amsph_last_error(), "use bin_size <="),
+          "message: %s", amsph_last_error());
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 int main(void)
 {
     test_schedule();
     test_hook();
+    test_bins_too_large();
     test_reference(random_case_2d, "random 2D");
     test_reference(random_case_3d, "random 3D, periodic seam");
     test_slab("laser_slab_2d.yaml");
