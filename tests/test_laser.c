@@ -271,10 +271,27 @@ static double compare_reference(amsph_sim *s, double *by_id, double *total_error
     return worst / scale;
 }
 
+/* laser_power by particle id on each backend that ran (ran[k]); the
+ * backends run the same kernels and must agree to rounding. */
+enum { MAX_PARTICLES = 20000 };
+static double by_id[TESTING_BACKENDS][MAX_PARTICLES];
+
+static void check_backends_agree(const char *name, int n, const int ran[TESTING_BACKENDS])
+{
+    if (!ran[0] || !ran[1])
+        return;
+    double worst = 0.0, scale = 0.0;
+    for (int id = 0; id < n; ++id) {
+        worst = fmax(worst, fabs(by_id[0][id] - by_id[1][id]));
+        scale = fmax(scale, fabs(by_id[0][id]));
+    }
+    fprintf(stderr, "%s: openmp and opencl differ by %.2e of the peak\n", name, worst / scale);
+    CHECK(worst < (AMSPH_DOUBLE ? 1e-12 : 1e-5) * scale, "%s: backends differ by %.3g of the peak", name,
+          worst / scale);
+}
+
 static void test_reference(const char *text, const char *name)
 {
-    enum { MAX = 20000 };
-    static double by_id[TESTING_BACKENDS][MAX];
     int n = 0, ran[TESTING_BACKENDS] = {0, 0};
     amsph_case c;
     if (parse(text, &c))
@@ -287,7 +304,7 @@ static void test_reference(const char *text, const char *name)
             continue;
         amsph_sim s;
         CHECK_OK(amsph_sim_create(&c, b, &s));
-        CHECK(s.particles.n <= MAX, "%d particles", s.particles.n);
+        CHECK(s.particles.n <= MAX_PARTICLES, "%d particles", s.particles.n);
         CHECK_OK(scatter_particles(&s, lo, hi));
         CHECK_OK(amsph_laser_absorb(&s, 0.0));
         double total_error = 0.0;
@@ -304,16 +321,7 @@ static void test_reference(const char *text, const char *name)
         amsph_sim_free(&s);
         amsph_backend_destroy(b);
     }
-    if (!ran[0] || !ran[1])
-        return;
-    double worst = 0.0, scale = 0.0;
-    for (int id = 0; id < n; ++id) {
-        worst = fmax(worst, fabs(by_id[0][id] - by_id[1][id]));
-        scale = fmax(scale, fabs(by_id[0][id]));
-    }
-    fprintf(stderr, "%s: openmp and opencl differ by %.2e of the peak\n", name, worst / scale);
-    CHECK(worst < (AMSPH_DOUBLE ? 1e-12 : 1e-5) * scale, "%s: backends differ by %.3g of the peak", name,
-          worst / scale);
+    check_backends_agree(name, n, ran);
 }
 
 /* ---- the slab (T4) ---------------------------------------------------------- */
@@ -418,8 +426,6 @@ static void test_slab(const char *file)
  * backends must agree. */
 static void test_surface(const char *file, amsph_kernel_type kernel, double tolerance)
 {
-    enum { MAX = 10000 };
-    static double by_id[TESTING_BACKENDS][MAX];
     amsph_case c;
     if (load_slab(file, 5e-5, &c))
         return;
@@ -438,7 +444,7 @@ static void test_surface(const char *file, amsph_kernel_type kernel, double tole
         const double error = s.laser.absorbed_power / expected - 1.0;
         amsph_host_particles h;
         CHECK_OK(amsph_particles_download(&s.particles, &h));
-        CHECK(h.n <= MAX, "%d particles", h.n);
+        CHECK(h.n <= MAX_PARTICLES, "%d particles", h.n);
         double deep = 0.0; /* largest laser_power deeper than the support below the top */
         for (int i = 0; i < h.n; ++i) {
             const double q = amsph_host_real(&h, AMSPH_FIELD_LASER_POWER)[i];
@@ -458,11 +464,7 @@ static void test_surface(const char *file, amsph_kernel_type kernel, double tole
         amsph_sim_free(&s);
         amsph_backend_destroy(b);
     }
-    double worst = 0.0;
-    for (int id = 0; ran[0] && ran[1] && id < n; ++id)
-        worst = fmax(worst, fabs(by_id[0][id] - by_id[1][id]));
-    CHECK(worst < (AMSPH_DOUBLE ? 1e-12 : 1e-5) * peak, "%s: backends differ by %.3g of the peak", file,
-          worst / peak);
+    check_backends_agree(file, n, ran);
 }
 
 /* ---- the hook in the time step --------------------------------------------- */
