@@ -1,7 +1,7 @@
 /* Case files: YAML → validated amsph_case (see case.h).
  *
  * One schema table (`specs` below) describes every key: where it lives, its
- * type, unit, range, default and the shapes it applies to. The same table
+ * type, unit, range, default and the variants (shapes) it applies to. The same table
  * drives parsing, validation, defaults and the Markdown key reference.
  *
  * Each map is read in two passes. The first collects the value node of every
@@ -39,14 +39,24 @@ _Static_assert(sizeof(amsph_kernel_type) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_backend_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_absorption) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
-typedef enum { SEC_TOP, SEC_DOMAIN, SEC_FLUID, SEC_THERMAL, SEC_MATERIAL, SEC_GEOMETRY } section_id;
+typedef enum {
+    SEC_TOP,
+    SEC_DOMAIN,
+    SEC_FLUID,
+    SEC_THERMAL,
+    SEC_LASER,
+    SEC_LASER_PATH,
+    SEC_MATERIAL,
+    SEC_GEOMETRY
+} section_id;
 
 /* How each section is named in the key reference. */
-static const char *const section_prefix[] = {"",         "domain.",      "fluid.",
-                                              "thermal.", "materials[].", "geometry[]."};
+static const char *const section_prefix[] = {"",       "domain.",       "fluid.",       "thermal.",
+                                             "laser.", "laser.path[].", "materials[].", "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -68,7 +78,8 @@ enum {
     F_FROM_LO = 1u << 2,      /* value >= lo */
     F_UP_TO_HI = 1u << 3,     /* value <= hi */
     F_NO_DEFAULT = 1u << 4,   /* optional; absence is recorded (temperature) */
-    F_SELECTS_SHAPE = 1u << 5 /* the value decides which shape-specific keys apply */
+    F_SELECTS_VARIANT = 1u << 5 /* the value decides which variant-specific keys of the section
+                                   apply (geometry: shape; laser: absorption) */
 };
 
 typedef struct {
@@ -115,11 +126,16 @@ static const choice integration_choices[] = {{"explicit", AMSPH_THERMAL_EXPLICIT
                                              {NULL, 0, 0}};
 static const choice slip_choices[] = {
     {"no_slip", WALL_NO_SLIP, 0}, {"free_slip", WALL_FREE_SLIP, 0}, {NULL, 0, 0}};
+static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLUMETRIC, 0},
+                                            {"surface", AMSPH_ABSORPTION_SURFACE, 0},
+                                            {NULL, 0, 0}};
 
-#define SHAPE_BIT(s) (1u << (s))
-#define BOX_ONLY SHAPE_BIT(AMSPH_SHAPE_BOX)
-#define CYLINDER_ONLY SHAPE_BIT(AMSPH_SHAPE_CYLINDER)
-#define ROUND_SHAPES (SHAPE_BIT(AMSPH_SHAPE_CIRCLE) | SHAPE_BIT(AMSPH_SHAPE_SPHERE) | CYLINDER_ONLY)
+#define VARIANT_BIT(v) (1u << (v))
+#define BOX_ONLY VARIANT_BIT(AMSPH_SHAPE_BOX)
+#define CYLINDER_ONLY VARIANT_BIT(AMSPH_SHAPE_CYLINDER)
+#define ROUND_SHAPES (VARIANT_BIT(AMSPH_SHAPE_CIRCLE) | VARIANT_BIT(AMSPH_SHAPE_SPHERE) | CYLINDER_ONLY)
+#define VOLUMETRIC_ONLY VARIANT_BIT(AMSPH_ABSORPTION_VOLUMETRIC)
+#define SURFACE_ONLY VARIANT_BIT(AMSPH_ABSORPTION_SURFACE)
 
 typedef struct {
     section_id section;
@@ -131,9 +147,10 @@ typedef struct {
     double def;            /* default of an optional number, integer or choice */
     const choice *choices; /* VT_CHOICE, VT_FACES */
     section_id sub;        /* VT_MAP, VT_LIST: section of the nested keys */
-    unsigned shapes;       /* geometry: shapes the key applies to; 0 = all */
-    size_t offset;         /* field in amsph_case (top, domain), amsph_material or
-                              amsph_geometry */
+    unsigned variants;     /* values of the section's F_SELECTS_VARIANT key (geometry: shapes)
+                              the key applies to, as VARIANT_BITs; 0 = all */
+    size_t offset;         /* field in amsph_case (top, domain, fluid, laser), amsph_material,
+                              amsph_geometry or amsph_laser_segment */
     const char *rule;      /* rule across keys, checked in code; for the reference */
     const char *doc;
 } key_spec;
@@ -141,6 +158,8 @@ typedef struct {
 #define CASE(field) offsetof(amsph_case, field)
 #define FLUID(field) offsetof(amsph_case, fluid.field)
 #define THERMAL(field) offsetof(amsph_case, thermal.field)
+#define LASER(field) offsetof(amsph_case, laser.field)
+#define SEGMENT(field) offsetof(amsph_laser_segment, field)
 #define MAT(field) offsetof(amsph_material, field)
 #define GEO(field) offsetof(amsph_geometry, field)
 
@@ -247,6 +266,60 @@ static const key_spec specs[] = {
     {.section = SEC_THERMAL, .key = "viscous_heating", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = THERMAL(viscous_heating), .rule = "needs `fluid`",
      .doc = "Viscous dissipation tau : grad u heats the fluid (renormalised velocity gradient)"},
+    {.section = SEC_TOP, .key = "laser", .type = VT_MAP, .sub = SEC_LASER,
+     .doc = "Laser heat source: a Gaussian beam (Russell 2018 Eq. 3.42) absorbed into the particles' "
+            "`laser_power`; present: on. In 2D the plane is a slice through the beam axis, so "
+            "absorbed powers are per metre of depth"},
+    {.section = SEC_LASER, .key = "power", .type = VT_NUMBER, .unit = "W",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = LASER(power), .doc = "Beam power P"},
+    {.section = SEC_LASER, .key = "radius", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = LASER(radius),
+     .doc = "1/e² radius r_l: irradiance 2P/(π r_l²) exp(-2 r²/r_l²) at distance r from the axis"},
+    {.section = SEC_LASER, .key = "absorption", .type = VT_CHOICE, .choices = absorption_choices,
+     .flags = F_SELECTS_VARIANT, .def = AMSPH_ABSORPTION_VOLUMETRIC, .offset = LASER(absorption),
+     .doc = "Beer-Lambert through a beam-aligned bin grid (Russell 2018 §3.2.2) or a flux on the "
+            "surface facing the beam (Fuchs et al. 2022 Eq. 17)"},
+    {.section = SEC_LASER, .key = "absorption_coefficient", .type = VT_NUMBER, .unit = "1/m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = VOLUMETRIC_ONLY,
+     .offset = LASER(absorption_coefficient),
+     .doc = "Beer-Lambert absorption coefficient α (Russell 2018 Eq. 3.40)"},
+    {.section = SEC_LASER, .key = "absorptivity", .type = VT_NUMBER,
+     .flags = F_ABOVE_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 1, .variants = SURFACE_ONLY,
+     .offset = LASER(absorptivity), .doc = "Absorbed fraction ζ of the irradiance (Fuchs et al. 2022 Eq. 17)"},
+    {.section = SEC_LASER, .key = "direction", .type = VT_VECTOR, .flags = F_NO_DEFAULT,
+     .offset = LASER(direction),
+     .rule = "nonzero; normalised on reading; perpendicular to periodic directions",
+     .doc = "Direction the beam travels; not set: -y (2D), -z (3D)"},
+    {.section = SEC_LASER, .key = "start", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .offset = LASER(start), .doc = "Beam centre at t = 0 (any point on the beam axis)"},
+    {.section = SEC_LASER, .key = "path", .type = VT_LIST, .lo = 1, .hi = AMSPH_MAX_LASER_PATH,
+     .sub = SEC_LASER_PATH,
+     .doc = "Segments the beam centre follows in order from `start` (from t = 0); afterwards "
+            "it stays at the last end point"},
+    {.section = SEC_LASER_PATH, .key = "to", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
+     .offset = SEGMENT(to), .doc = "End point of the segment"},
+    {.section = SEC_LASER_PATH, .key = "speed", .type = VT_NUMBER, .unit = "m/s",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = SEGMENT(speed),
+     .doc = "Speed of the beam centre along the segment"},
+    {.section = SEC_LASER, .key = "on_time", .type = VT_NUMBER, .unit = "s", .flags = F_FROM_LO,
+     .lo = 0, .def = 0, .offset = LASER(on_time), .doc = "Time the laser switches on"},
+    {.section = SEC_LASER, .key = "off_time", .type = VT_NUMBER, .unit = "s", .flags = F_NO_DEFAULT,
+     .offset = LASER(off_time), .rule = "> `on_time`",
+     .doc = "Time the laser switches off; not set: never"},
+    {.section = SEC_LASER, .key = "ramp_time", .type = VT_NUMBER, .unit = "s", .flags = F_FROM_LO,
+     .lo = 0, .def = 0, .offset = LASER(ramp_time),
+     .rule = "at most half of `off_time` - `on_time`",
+     .doc = "The power ramps linearly from 0 over this time after `on_time` and back to 0 over "
+            "this time before `off_time`"},
+    {.section = SEC_LASER, .key = "bin_size", .type = VT_NUMBER, .unit = "m",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = LASER(bin_size),
+     .variants = VOLUMETRIC_ONLY,
+     .rule = "bin_size √dimension <= the kernel support (checked when the run starts)",
+     .doc = "Side of the bins of the Beer-Lambert grid; not set: `dx`"},
+    {.section = SEC_LASER, .key = "window", .type = VT_NUMBER, .flags = F_FROM_LO, .lo = 1,
+     .def = 3, .variants = VOLUMETRIC_ONLY, .offset = LASER(window),
+     .doc = "The bin columns reach this many radii r_l from the axis (the beam power beyond: "
+            "below exp(-2 window²))"},
     {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
      .doc = "Materials, referred to by name from `geometry`"},
@@ -296,7 +369,7 @@ static const key_spec specs[] = {
      .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
      .doc = "Bodies filled with particles"},
     {.section = SEC_GEOMETRY, .key = "shape", .type = VT_CHOICE, .choices = shape_choices,
-     .flags = F_REQUIRED | F_SELECTS_SHAPE, .offset = GEO(shape),
+     .flags = F_REQUIRED | F_SELECTS_VARIANT, .offset = GEO(shape),
      .doc = "Shape of the body; decides which keys below apply"},
     {.section = SEC_GEOMETRY, .key = "kind", .type = VT_CHOICE, .choices = kind_choices,
      .flags = F_REQUIRED, .offset = GEO(kind), .doc = "Kind of the particles"},
@@ -304,27 +377,27 @@ static const key_spec specs[] = {
      .offset = GEO(material), .rule = "name of a material",
      .doc = "Material of the particles"},
     {.section = SEC_GEOMETRY, .key = "min", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
-     .shapes = BOX_ONLY, .offset = GEO(min), .doc = "Lower corner of the box"},
+     .variants = BOX_ONLY, .offset = GEO(min), .doc = "Lower corner of the box"},
     {.section = SEC_GEOMETRY, .key = "max", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
-     .shapes = BOX_ONLY, .offset = GEO(max), .rule = "each > `min`",
+     .variants = BOX_ONLY, .offset = GEO(max), .rule = "each > `min`",
      .doc = "Upper corner of the box"},
     {.section = SEC_GEOMETRY, .key = "center", .type = VT_VECTOR, .unit = "m",
-     .flags = F_REQUIRED, .shapes = ROUND_SHAPES, .offset = GEO(center),
+     .flags = F_REQUIRED, .variants = ROUND_SHAPES, .offset = GEO(center),
      .doc = "Centre; for a cylinder the centre of its base"},
     {.section = SEC_GEOMETRY, .key = "axis", .type = VT_VECTOR, .flags = F_REQUIRED,
-     .shapes = CYLINDER_ONLY, .offset = GEO(axis), .rule = "nonzero; normalised on reading",
+     .variants = CYLINDER_ONLY, .offset = GEO(axis), .rule = "nonzero; normalised on reading",
      .doc = "Direction of the cylinder axis"},
     {.section = SEC_GEOMETRY, .key = "radius", .type = VT_NUMBER, .unit = "m",
-     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .shapes = ROUND_SHAPES, .offset = GEO(radius),
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = ROUND_SHAPES, .offset = GEO(radius),
      .doc = "Radius"},
     {.section = SEC_GEOMETRY, .key = "length", .type = VT_NUMBER, .unit = "m",
-     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .shapes = CYLINDER_ONLY, .offset = GEO(length),
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = CYLINDER_ONLY, .offset = GEO(length),
      .doc = "Length of the cylinder along `axis`"},
     {.section = SEC_GEOMETRY, .key = "layers", .type = VT_INT, .flags = F_FROM_LO, .lo = 0,
-     .shapes = BOX_ONLY, .offset = GEO(layers),
+     .variants = BOX_ONLY, .offset = GEO(layers),
      .doc = "0: a filled box; n > 0: n layers of particles outside the box faces (a tank)"},
     {.section = SEC_GEOMETRY, .key = "open", .type = VT_FACES, .choices = face_choices,
-     .shapes = BOX_ONLY, .offset = GEO(open_faces), .rule = "only with `layers` > 0",
+     .variants = BOX_ONLY, .offset = GEO(open_faces), .rule = "only with `layers` > 0",
      .doc = "Faces of the tank left without wall"},
     {.section = SEC_GEOMETRY, .key = "velocity", .type = VT_VECTOR, .unit = "m/s",
      .offset = GEO(velocity), .doc = "Initial velocity"},
@@ -359,8 +432,9 @@ typedef struct {
     size_t index;          /* list entry number */
     void *target;
     const yaml_node_t *map;
-    unsigned shape; /* geometry: bit of the shape; otherwise all bits */
-    const char *shape_name;
+    unsigned variant;         /* VARIANT_BIT of the selected variant; all bits before one is */
+    const char *variant_key;  /* the key that selected it: "shape", "absorption" */
+    const char *variant_name; /* its value: "box", "surface" */
     const yaml_node_t *key[N_SPECS];   /* key node per spec, NULL if absent */
     const yaml_node_t *value[N_SPECS]; /* its value node */
 } scope;
@@ -670,16 +744,23 @@ static int read_choice(parser *p, const choice *choices, const yaml_node_t *n, s
     return 0;
 }
 
+/* Only the keys of the variant c (a value of the selecting key k) apply
+ * from here on in the scope. */
+static void select_variant(scope *sc, const key_spec *k, const choice *c)
+{
+    sc->variant = VARIANT_BIT(c->value);
+    sc->variant_key = k->key;
+    sc->variant_name = c->name;
+}
+
 static int load_choice(parser *p, const slot *s)
 {
     const choice *c;
     if (read_choice(p, s->spec->choices, s->node, value_line(s), s->path, &c))
         return CASE_ERROR;
     *(int *)s->dst = c->value;
-    if (s->spec->flags & F_SELECTS_SHAPE) {
-        s->sc->shape = SHAPE_BIT(c->value);
-        s->sc->shape_name = c->name;
-    }
+    if (s->spec->flags & F_SELECTS_VARIANT)
+        select_variant(s->sc, s->spec, c);
     return 0;
 }
 
@@ -804,7 +885,7 @@ static void init_scope(scope *sc, section_id section, const char *label, void *t
     set_path(sc->prefix, "%s.", label);
     sc->target = target;
     sc->map = map;
-    sc->shape = ~0u;
+    sc->variant = ~0u;
 }
 
 static int load_map(parser *p, const slot *s)
@@ -822,6 +903,10 @@ static void *list_entry(amsph_case *c, section_id section, size_t i)
     if (section == SEC_MATERIAL) {
         c->n_materials = (int)i + 1;
         return &c->materials[i];
+    }
+    if (section == SEC_LASER_PATH) {
+        c->laser.n_path = (int)i + 1;
+        return &c->laser.path[i];
     }
     c->n_geometry = (int)i + 1;
     return &c->geometry[i];
@@ -966,13 +1051,19 @@ static int collect_keys(parser *p, scope *sc)
     return 0;
 }
 
-static int apply_default(parser *p, const scope *sc, const key_spec *k, void *dst)
+static int apply_default(parser *p, scope *sc, const key_spec *k, void *dst)
 {
     if (k->flags & F_REQUIRED) {
-        if (k->shapes)
-            return fail(p, line_of(sc->map), "missing required key '%s' in %s (shape '%s')", k->key,
-                        sc->label, sc->shape_name);
+        if (k->variants)
+            return fail(p, line_of(sc->map), "missing required key '%s' in %s (%s '%s')", k->key,
+                        sc->label, sc->variant_key, sc->variant_name);
         return fail(p, line_of(sc->map), "missing required key '%s' in %s", k->key, sc->label);
+    }
+    if (k->flags & F_SELECTS_VARIANT) {
+        const choice *c = k->choices;
+        while (c->value != (int)k->def)
+            c++;
+        select_variant(sc, k, c);
     }
     switch (k->type) {
     case VT_NUMBER:
@@ -1010,10 +1101,10 @@ static int load_key(parser *p, scope *sc, size_t i)
     slot s = {.sc = sc, .spec = k, .key = sc->key[i], .node = sc->value[i]};
     set_path(s.path, "%s%s", sc->prefix, k->key);
     s.dst = (char *)sc->target + k->offset;
-    if (k->shapes && !(k->shapes & sc->shape)) {
+    if (k->variants && !(k->variants & sc->variant)) {
         if (sc->key[i])
-            return fail(p, line_of(sc->key[i]), "'%s' does not apply to shape '%s'", s.path,
-                        sc->shape_name);
+            return fail(p, line_of(sc->key[i]), "'%s' does not apply to %s '%s'", s.path,
+                        sc->variant_key, sc->variant_name);
         return 0;
     }
     if (!s.node)
@@ -1118,12 +1209,13 @@ static int finish_top(parser *p)
     return 0;
 }
 
-/* Scales the cylinder axis to unit length (without overflow for huge input). */
-static int normalise_axis(parser *p, const scope *sc, double axis[3])
+/* Scales the vector of `key` (a cylinder axis, the beam direction) to unit
+ * length (without overflow for huge input). */
+static int normalise_vector(parser *p, const scope *sc, const char *key, double axis[3])
 {
     double largest = fmax(fabs(axis[0]), fmax(fabs(axis[1]), fabs(axis[2])));
     if (largest == 0)
-        return fail(p, line_of(found(sc, "axis")), "'%saxis' must not be zero", sc->prefix);
+        return fail(p, line_of(found(sc, key)), "'%s%s' must not be zero", sc->prefix, key);
     double norm = 0;
     for (int d = 0; d < 3; d++) {
         axis[d] /= largest;
@@ -1148,7 +1240,42 @@ static int finish_geometry(parser *p, const scope *sc)
         return check_corners(p, sc, g->min, g->max);
     }
     if (g->shape == AMSPH_SHAPE_CYLINDER)
-        return normalise_axis(p, sc, g->axis);
+        return normalise_vector(p, sc, "axis", g->axis);
+    return 0;
+}
+
+/* The beam direction (default: down), perpendicular to periodic directions;
+ * off after on, room for both ramps; bins of dx by default. */
+static int finish_laser(parser *p, const scope *sc)
+{
+    static const char axis_name[3] = {'x', 'y', 'z'};
+    amsph_laser_settings *l = &p->c->laser;
+    const int dim = p->c->dim;
+    l->enabled = 1;
+    const yaml_node_t *direction = found(sc, "direction");
+    if (!direction)
+        l->direction[dim - 1] = -1.0;
+    else if (normalise_vector(p, sc, "direction", l->direction))
+        return CASE_ERROR;
+    for (int d = 0; d < dim; d++)
+        if (p->c->periodic[d] && l->direction[d] != 0)
+            return fail(p, line_of(direction ? direction : sc->map),
+                        "'laser.direction' must be perpendicular to the periodic direction %c (a "
+                        "beam along it would wrap around the domain)",
+                        axis_name[d]);
+    const yaml_node_t *off = found(sc, "off_time");
+    if (!off)
+        l->off_time = INFINITY;
+    else if (!(l->off_time > l->on_time))
+        return fail(p, line_of(off), "'laser.off_time' (%g s) must be > 'laser.on_time' (%g s)",
+                    l->off_time, l->on_time);
+    if (2 * l->ramp_time > l->off_time - l->on_time)
+        return fail(p, line_of(found(sc, "ramp_time")),
+                    "'laser.ramp_time' (%g s) must be at most half of off_time - on_time (%g s): "
+                    "the ramps up and down would overlap",
+                    l->ramp_time, l->off_time - l->on_time);
+    if (!found(sc, "bin_size"))
+        l->bin_size = p->c->dx;
     return 0;
 }
 
@@ -1161,6 +1288,10 @@ static int finish_scope(parser *p, const scope *sc)
     case SEC_THERMAL:
         p->c->thermal.enabled = 1;
         p->thermal_line = line_of(sc->map);
+        return 0;
+    case SEC_LASER:
+        return finish_laser(p, sc);
+    case SEC_LASER_PATH:
         return 0;
     case SEC_DOMAIN:
         return check_corners(p, sc, p->c->domain_min, p->c->domain_max);
@@ -1397,7 +1528,7 @@ static void print_names(FILE *f, const choice *choices, unsigned mask)
 {
     int first = 1;
     for (const choice *c = choices; c->name; c++) {
-        if (mask && !(mask & SHAPE_BIT(c->value)))
+        if (mask && !(mask & VARIANT_BIT(c->value)))
             continue;
         fprintf(f, "%s`%s`", first ? "" : ", ", c->name);
         if (c->dim)
@@ -1406,13 +1537,22 @@ static void print_names(FILE *f, const choice *choices, unsigned mask)
     }
 }
 
-/* The "allowed" cell: shapes, range, choices, counts and rules, with "; ". */
+/* The choices of the key that selects the variants of `section`. */
+static const choice *variant_choices(section_id section)
+{
+    size_t i = 0;
+    while (specs[i].section != section || !(specs[i].flags & F_SELECTS_VARIANT))
+        i++;
+    return specs[i].choices;
+}
+
+/* The "allowed" cell: variants, range, choices, counts and rules, with "; ". */
 static void print_allowed(FILE *f, const key_spec *k)
 {
     const char *sep = "";
-    if (k->shapes) {
+    if (k->variants) {
         fprintf(f, "only for ");
-        print_names(f, shape_choices, k->shapes);
+        print_names(f, variant_choices(k->section), k->variants);
         sep = "; ";
     }
     shown range = range_text(k);

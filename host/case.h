@@ -13,6 +13,7 @@
 
 #define AMSPH_MAX_MATERIALS 16
 #define AMSPH_MAX_GEOMETRY 64
+#define AMSPH_MAX_LASER_PATH 64
 #define AMSPH_NAME_LEN 64
 
 typedef enum { AMSPH_KERNEL_WENDLAND = 0, AMSPH_KERNEL_QUINTIC = 1 } amsph_kernel_type;
@@ -116,6 +117,34 @@ typedef struct {
     double ambient_temperature; /* T_inf of the radiation, K, default 300 */
     int viscous_heating;        /* 1: tau : grad u heats the fluid (kernels/thermal.cl), default 0 */
 } amsph_thermal_settings;
+typedef enum { AMSPH_ABSORPTION_VOLUMETRIC = 0, AMSPH_ABSORPTION_SURFACE = 1 } amsph_absorption;
+
+/* One leg of the beam's path: from the previous point straight to `to`. */
+typedef struct {
+    double to[3]; /* end point, m (unused components 0) */
+    double speed; /* m/s, > 0 */
+} amsph_laser_segment;
+
+/* The laser module (a Gaussian beam, host/laser.h); on when the case has a
+ * `laser:` section. In 2D the simulated plane is a slice through the beam
+ * axis, so absorbed powers are per metre of depth. */
+typedef struct {
+    int enabled;
+    double power;                  /* beam power P, W, > 0 */
+    double radius;                 /* 1/e^2 radius r_l, m, > 0 */
+    amsph_absorption absorption;   /* default volumetric */
+    double absorption_coefficient; /* Beer-Lambert alpha, 1/m (volumetric) */
+    double absorptivity;           /* absorbed fraction zeta, in (0, 1], default 1 (surface) */
+    double direction[3];           /* unit vector; default -y (2D), -z (3D) */
+    double start[3];               /* beam centre at t = 0, m */
+    int n_path;                    /* segments followed after start */
+    amsph_laser_segment path[AMSPH_MAX_LASER_PATH];
+    double on_time;                /* s, default 0 */
+    double off_time;               /* s, > on_time; default INFINITY (never off) */
+    double ramp_time;              /* linear ramp after on and before off, s, default 0 */
+    double bin_size;               /* side of a bin, m; default dx */
+    double window;                 /* columns reach this many radii from the axis, default 3 */
+} amsph_laser_settings;
 
 typedef struct {
     char path[512];       /* the file it came from (or the name given to the string parser) */
@@ -133,6 +162,7 @@ typedef struct {
     double gravity[3];    /* m/s^2, default 0 */
     amsph_fluid_settings fluid;
     amsph_thermal_settings thermal;
+    amsph_laser_settings laser;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];
     int n_geometry;

@@ -7,6 +7,7 @@
 #include "error.h"
 #include "fluid.h"
 #include "guards.h"
+#include "laser.h"
 #include "materials.h"
 #include "scene.h"
 #include "thermal.h"
@@ -34,14 +35,18 @@ static int upload_materials(amsph_sim *s)
     return amsph_upload(s->backend, s->materials, 0, bytes, table);
 }
 
-/* Density over the step dt (fluid module), then the acceleration of every
+/* Density over the step dt (fluid module), the absorbed laser power at the
+ * step's end time (laser module without the thermal module, which absorbs
+ * at the middle of its enthalpy step), then the acceleration of every
  * particle, from the state after the drift. */
 static int compute_rates(amsph_sim *s, double dt)
 {
-    if (s->config.fluid.enabled) {
+    if (s->config.fluid.enabled)
         AMSPH_CHECK(amsph_fluid_density(s, dt));
+    if (s->config.laser.enabled && !s->config.thermal.enabled)
+        AMSPH_CHECK(amsph_laser_absorb(s, s->time + dt));
+    if (s->config.fluid.enabled)
         return amsph_fluid_forces(s);
-    }
     amsph_particles *p = &s->particles;
     const double *g = s->config.gravity;
     return AMSPH_LAUNCH(s->backend, "body_force", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
@@ -66,6 +71,8 @@ static int build_particles(amsph_sim *s)
         status = amsph_fluid_setup(s, &host);
     if (!status && s->config.thermal.enabled)
         status = amsph_thermal_setup(s, &host);
+    if (!status && s->config.laser.enabled)
+        status = amsph_laser_setup(s, &host);
     if (!status)
         status = amsph_particles_upload(s->backend, &host, &s->particles);
     amsph_host_free(&host);
@@ -108,6 +115,9 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);
+    amsph_buffer_free(s->backend, s->laser.bin_weight);
+    amsph_buffer_free(s->backend, s->laser.bin_volume);
+    amsph_buffer_free(s->backend, s->laser.bin_power);
     memset(s, 0, sizeof *s);
 }
 

@@ -2,8 +2,10 @@
  * the time step assembled from the case's modules:
  *   no module:   fluid particles fall under gravity (ballistic)
  *   fluid:       weakly compressible SPH (kernels/fluid.cl) with walls,
- *                adaptive dt and run guards.
- *   thermal:     enthalpy, conduction, phase change, radiation (kernels/thermal.cl). */
+ *                adaptive dt and run guards;
+ *   thermal:     enthalpy, conduction, phase change, radiation (kernels/thermal.cl);
+ *   laser:       the absorbed laser power of every particle (kernels/laser.cl),
+ *                evaluated with the enthalpy update (thermal) or after every drift. */
 #ifndef AMSPH_SIM_H
 #define AMSPH_SIM_H
 
@@ -34,6 +36,17 @@ typedef struct {
     amsph_buffer *wall_temperature; /* mirrored temperature of walls (kernels/thermal.cl) */
     amsph_buffer *power[AMSPH_LEDGER_TERMS];
 } amsph_thermal_work;
+#include "laser_params.h"
+
+/* The laser module's state (host/laser.h). */
+typedef struct {
+    laser_params params;      /* the beam at the last absorption */
+    int columns, nodes;       /* bin columns and nodes (volumetric absorption) */
+    amsph_buffer *bin_weight; /* per node: sum of PIC weights */
+    amsph_buffer *bin_volume; /* per node: sum of weighted particle volumes, m^3 (2D: m^2) */
+    amsph_buffer *bin_power;  /* per node: absorbed power, W (2D: W/m) */
+    double absorbed_power;    /* absorbed by all particles at the last absorption, W (2D: W/m) */
+} amsph_laser_state;
 
 typedef struct {
     amsph_case config;
@@ -49,6 +62,7 @@ typedef struct {
     amsph_thermal_work thermal_work;
     amsph_energy_ledger ledger;
     int thermal_iterations; /* of the last step (midpoint: fixed-point iterations) */
+    amsph_laser_state laser;
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */
     double time;    /* s */

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "laser.h"
 #include "thermal_table.h"
 
 #define MUSHY_SUBDIVISIONS 8 /* nodes inside the mushy interval */
@@ -207,6 +208,8 @@ int amsph_thermal_start(amsph_sim *s)
                              amsph_arg_buffer(s->thermal_table), field(s, AMSPH_FIELD_ENTHALPY)));
     AMSPH_CHECK(update_state(s));
     AMSPH_CHECK(finish_step(s));
+    if (s->config.laser.enabled)
+        AMSPH_CHECK(amsph_laser_absorb(s, s->time));
     memset(&s->ledger, 0, sizeof s->ledger);
     return amsph_thermal_energy(s, &s->ledger.initial);
 }
@@ -330,6 +333,8 @@ static int advance_midpoint(amsph_sim *s, double dt)
 
 int amsph_thermal_advance(amsph_sim *s, double dt)
 {
+    if (s->config.laser.enabled)
+        AMSPH_CHECK(amsph_laser_absorb_step(s, s->time, s->time + dt));
     if (s->config.thermal.integration == AMSPH_THERMAL_MIDPOINT)
         AMSPH_CHECK(advance_midpoint(s, dt));
     else

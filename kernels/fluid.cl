@@ -7,11 +7,7 @@
 #include "materials.h"
 #include "neighbours.h"
 #include "smoothing.h"
-
-static inline real dot3(const real a[3], const real b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "vec3.h"
 
 /* p = c0^2 (rho - rho0) + p_b for fluid particles (Russell 2018 Eq. 3.52;
  * rho0 comes through reference_density, the hook for rho0(T)); optionally

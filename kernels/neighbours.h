@@ -41,21 +41,26 @@ static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], i
     return index;
 }
 
+/* A displacement r along axis d, replaced by its nearest periodic image on a
+ * periodic axis (|r| below one domain length). */
+static inline real grid_nearest_image(const grid_geometry *g, int d, real r)
+{
+    if (g->periodic[d]) {
+        const real half_length = REAL(0.5) * g->length[d];
+        if (r > half_length)
+            r -= g->length[d];
+        else if (r < -half_length)
+            r += g->length[d];
+    }
+    return r;
+}
+
 /* r_ab = r_a - r_b, the nearest periodic image on periodic axes. */
 static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *position, int a,
                                      int b, real r_ab[3])
 {
-    for (int d = 0; d < 3; ++d) {
-        real r = position[3 * a + d] - position[3 * b + d];
-        if (g->periodic[d]) {
-            const real half_length = REAL(0.5) * g->length[d];
-            if (r > half_length)
-                r -= g->length[d];
-            else if (r < -half_length)
-                r += g->length[d];
-        }
-        r_ab[d] = r;
-    }
+    for (int d = 0; d < 3; ++d)
+        r_ab[d] = grid_nearest_image(g, d, position[3 * a + d] - position[3 * b + d]);
 }
 
 /* Loop b over every particle in the 3^d cells around cell coordinates cc

@@ -107,7 +107,8 @@ static const bad_case bad_cases[] = {
      NAME ":17: unknown key 'end_tme' in top level; did you mean 'end_time'?"},
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
-          "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, materials, geometry)"},
+          "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, laser, "
+          "materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -120,7 +121,7 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, fluid, thermal, materials, geometry)"},
+          "backend, device, gravity, fluid, thermal, laser, materials, geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
     {"duplicate key", BASE2 "dx: 0.02\n",
@@ -239,6 +240,79 @@ static const bad_case bad_cases[] = {
      HEAD3 MATS GEO_START "    shape: cylinder\n    center: [0, 0, 0]\n"
                           "    axis: [0, 0, 0]\n    radius: 0.1\n    length: 0.2\n",
      NAME ":16: 'geometry[0].axis' must not be zero"},
+
+    /* the laser module */
+    {"laser missing power", BASE2 "laser: {radius: 1e-4, absorption_coefficient: 10, start: [0.5, 0.5]}\n",
+     NAME ":17: missing required key 'power' in laser"},
+    {"laser unknown key", BASE2 "laser: {powr: 1}\n",
+     NAME ":17: unknown key 'powr' in laser; did you mean 'power'?"},
+    {"laser power zero", BASE2 "laser: {power: 0, radius: 1, absorption_coefficient: 1, start: [0, 0]}\n",
+     NAME ":17: 'laser.power' must be > 0, got 0"},
+    {"laser absorption unknown", BASE2 "laser: {power: 1, radius: 1, absorption: ray, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorption' must be one of volumetric, surface; got 'ray'"},
+    {"laser volumetric without coefficient", BASE2 "laser: {power: 1, radius: 1, start: [0, 0]}\n",
+     NAME ":17: missing required key 'absorption_coefficient' in laser (absorption 'volumetric')"},
+    {"laser coefficient for surface",
+     BASE2 "laser: {power: 1, radius: 1, absorption: surface, absorption_coefficient: 5, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorption_coefficient' does not apply to absorption 'surface'"},
+    {"laser absorptivity for volumetric (default)",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 5, absorptivity: 0.5, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorptivity' does not apply to absorption 'volumetric'"},
+    {"laser absorptivity above 1",
+     BASE2 "laser: {power: 1, radius: 1, absorption: surface, absorptivity: 1.5, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorptivity' must be in (0, 1], got 1.5"},
+    {"laser absorptivity zero",
+     BASE2 "laser: {power: 1, radius: 1, absorption: surface, absorptivity: 0, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorptivity' must be in (0, 1], got 0"},
+    {"laser bins for surface",
+     BASE2 "laser: {power: 1, radius: 1, absorption: surface, bin_size: 0.01, start: [0, 0]}\n",
+     NAME ":17: 'laser.bin_size' does not apply to absorption 'surface'"},
+    {"laser window below 1",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, window: 0.5, start: [0, 0]}\n",
+     NAME ":17: 'laser.window' must be >= 1, got 0.5"},
+    {"laser direction zero",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, direction: [0, 0], start: [0, 0]}\n",
+     NAME ":17: 'laser.direction' must not be zero"},
+    {"laser direction along a periodic axis",
+     "dimension: 2\ndomain: {min: [0, 0], max: [1, 1], periodic: [true, false]}\ndx: 0.01\nend_time: 1\n"
+     "output_interval: 0.1\n" MATS GEO_BOX
+     "laser: {power: 1, radius: 1, absorption_coefficient: 1, direction: [1, -1], start: [0, 0]}\n",
+     NAME ":15: 'laser.direction' must be perpendicular to the periodic direction x (a beam along it "
+          "would wrap around the domain)"},
+    {"laser default direction along a periodic axis",
+     "dimension: 2\ndomain: {min: [0, 0], max: [1, 1], periodic: [false, true]}\ndx: 0.01\nend_time: 1\n"
+     "output_interval: 0.1\n" MATS GEO_BOX "laser:\n  power: 1\n  radius: 1\n"
+     "  absorption_coefficient: 1\n  start: [0, 0]\n",
+     NAME ":16: 'laser.direction' must be perpendicular to the periodic direction y (a beam along it "
+          "would wrap around the domain)"},
+    {"laser off before on",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, start: [0, 0], on_time: 2, off_time: 1}\n",
+     NAME ":17: 'laser.off_time' (1 s) must be > 'laser.on_time' (2 s)"},
+    {"laser off at on",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, start: [0, 0], on_time: 1, off_time: 1}\n",
+     NAME ":17: 'laser.off_time' (1 s) must be > 'laser.on_time' (1 s)"},
+    {"laser ramps overlap",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, start: [0, 0], off_time: 1,\n"
+           "        ramp_time: 0.6}\n",
+     NAME ":18: 'laser.ramp_time' (0.6 s) must be at most half of off_time - on_time (1 s): the ramps "
+          "up and down would overlap"},
+    {"laser start missing", BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1}\n",
+     NAME ":17: missing required key 'start' in laser"},
+    {"laser path empty",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 1, start: [0, 0], path: []}\n",
+     NAME ":17: 'laser.path' must have at least 1 entry"},
+    {"laser path speed zero",
+     BASE2 "laser:\n  power: 1\n  radius: 1\n  absorption_coefficient: 1\n  start: [0, 0]\n"
+           "  path:\n    - {to: [1, 0], speed: 1}\n    - {to: [1, 1], speed: 0}\n",
+     NAME ":24: 'laser.path[1].speed' must be > 0, got 0"},
+    {"laser path point in 3 numbers",
+     BASE2 "laser:\n  power: 1\n  radius: 1\n  absorption_coefficient: 1\n  start: [0, 0]\n"
+           "  path: [{to: [1, 0, 0], speed: 1}]\n",
+     NAME ":22: 'laser.path[0].to' must have 2 numbers (dimension 2), got 3"},
+    {"laser path entry missing speed",
+     BASE2 "laser:\n  power: 1\n  radius: 1\n  absorption_coefficient: 1\n  start: [0, 0]\n"
+           "  path:\n    - to: [1, 0]\n",
+     NAME ":23: missing required key 'speed' in laser.path[0]"},
 
     /* list lengths */
     {"domain.min too long", "dimension: 2\ndomain:\n  min: [0, 0, 0]\n  max: [1, 1]\n",
@@ -406,6 +480,7 @@ static void check_defaults(const amsph_case *c)
 {
     check_default_values(c);
     expect(c->geometry[0].line == 12, "geometry line");
+    expect(!c->laser.enabled, "no laser");
 }
 
 /* The sections of the defaults case in reverse order: geometry comes first. */
@@ -442,6 +517,22 @@ static const char full3d[] =
     "    axis: [1, 1, 0]\n"
     "    radius: 1\n"
     "    length: 1\n"
+    "laser:\n"
+    "  window: 4\n"
+    "  bin_size: 0.015\n"
+    "  ramp_time: 1e-4\n"
+    "  off_time: 2e-3\n"
+    "  on_time: 1e-3\n"
+    "  path:\n"
+    "    - {speed: 2, to: [0.5, 0.6, 0.8]}\n"
+    "    - speed: 0.5\n"
+    "      to: [0.7, 0.6, 0.8]\n"
+    "  start: [0.5, 0.5, 0.8]\n"
+    "  direction: [0, -2.5, 0]\n"
+    "  absorption_coefficient: 2e3\n"
+    "  absorption: volumetric\n"
+    "  radius: 5e-5\n"
+    "  power: 150\n"
     "materials:\n"
     "  - name: water\n"
     "    sound_speed: 20\n"
@@ -502,6 +593,31 @@ static void check_full3d(const amsph_case *c)
     expect(!cyl->has_temperature && !box->has_temperature, "no temperature");
     double r = 1 / sqrt(2);
     expect(vec_is(tilted->axis, r, r, 0), "axis normalised");
+    const amsph_laser_settings *l = &c->laser;
+    expect(l->enabled && near(l->power, 150) && near(l->radius, 5e-5), "laser power, radius");
+    expect(l->absorption == AMSPH_ABSORPTION_VOLUMETRIC && near(l->absorption_coefficient, 2000),
+           "laser absorption");
+    expect(vec_is(l->direction, 0, -1, 0), "laser direction normalised");
+    expect(vec_is(l->start, 0.5, 0.5, 0.8) && l->n_path == 2, "laser start, path length");
+    expect(vec_is(l->path[0].to, 0.5, 0.6, 0.8) && near(l->path[0].speed, 2), "laser path[0]");
+    expect(vec_is(l->path[1].to, 0.7, 0.6, 0.8) && near(l->path[1].speed, 0.5), "laser path[1]");
+    expect(near(l->on_time, 1e-3) && near(l->off_time, 2e-3) && near(l->ramp_time, 1e-4), "laser times");
+    expect(near(l->bin_size, 0.015) && near(l->window, 4), "laser bins");
+}
+
+/* A surface-absorbing laser with every optional key left out. */
+static const char laser2d[] = BASE2 "laser: {power: 100, radius: 1e-4, absorption: surface, start: [0.5, 0.5]}\n";
+
+static void check_laser2d(const amsph_case *c)
+{
+    check_default_values(c);
+    const amsph_laser_settings *l = &c->laser;
+    expect(l->enabled && near(l->power, 100) && near(l->radius, 1e-4), "laser power, radius");
+    expect(l->absorption == AMSPH_ABSORPTION_SURFACE && near(l->absorptivity, 1), "absorptivity default");
+    expect(vec_is(l->direction, 0, -1, 0), "direction default: -y");
+    expect(vec_is(l->start, 0.5, 0.5, 0) && l->n_path == 0, "start, no path");
+    expect(l->on_time == 0 && isinf(l->off_time) && l->ramp_time == 0, "schedule defaults");
+    expect(near(l->bin_size, c->dx), "bin_size default: dx");
 }
 
 /* 2D with a circle, a tank open at the top, periodic x and gravity. */
@@ -551,6 +667,7 @@ static const good_case good_cases[] = {
     {"defaults, sections reversed", GEO_BOX MATS HEAD2, check_reversed},
     {"every key, 3D, shuffled", full3d, check_full3d},
     {"2D tank and circle", tank2d, check_tank2d},
+    {"2D laser, surface absorption, defaults", laser2d, check_laser2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,
@@ -749,6 +866,9 @@ int main(void)
     run_bad_cases();
     run_too_many(HEAD2, "materials", AMSPH_MAX_MATERIALS + 1, "  - {name: m%d, density: 1}\n",
                  NAME ":8: 'materials' has 17 entries; at most 16 are allowed");
+    run_too_many(BASE2 "laser:\n  power: 1\n  radius: 1\n  absorption_coefficient: 1\n  start: [0, 0]\n",
+                 "  path", AMSPH_MAX_LASER_PATH + 1, "    - {to: [0, %d], speed: 1}\n",
+                 NAME ":22: 'laser.path' has 65 entries; at most 64 are allowed");
     run_too_many(HEAD2 MATS, "geometry", AMSPH_MAX_GEOMETRY + 1,
                  "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [1, %d]}\n",
                  NAME ":11: 'geometry' has 65 entries; at most 64 are allowed");

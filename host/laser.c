@@ -1,0 +1,215 @@
+#include "laser.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+
+#define PI 3.14159265358979323846
+#define MAX_BIN_NODES 100000000 /* 100 M nodes: 1.2 GB of bins in float */
+
+double amsph_laser_beam_power(const amsph_case *c, double t)
+{
+    const amsph_laser_settings *l = &c->laser;
+    if (t < l->on_time || t >= l->off_time)
+        return 0.0;
+    if (l->ramp_time == 0.0)
+        return l->power;
+    return l->power * fmin(1.0, fmin(t - l->on_time, l->off_time - t) / l->ramp_time);
+}
+
+double amsph_laser_beam_energy(const amsph_case *c, double t0, double t1)
+{
+    const amsph_laser_settings *l = &c->laser;
+    const double corners[] = {l->on_time, l->on_time + l->ramp_time, l->off_time - l->ramp_time,
+                              l->off_time, t1};
+    double energy = 0.0, a = t0;
+    for (int k = 0; k < 5 && a < t1; ++k) {
+        const double b = fmin(fmax(corners[k], a), t1);
+        energy += (b - a) * amsph_laser_beam_power(c, 0.5 * (a + b)); /* linear on [a, b] */
+        a = b;
+    }
+    return energy;
+}
+
+void amsph_laser_beam_centre(const amsph_case *c, double t, double x[3])
+{
+    const amsph_laser_settings *l = &c->laser;
+    memcpy(x, l->start, 3 * sizeof *x);
+    double left = t; /* travel time still to follow */
+    for (int k = 0; k < l->n_path && left > 0.0; ++k) {
+        const double *to = l->path[k].to;
+        const double length = sqrt((to[0] - x[0]) * (to[0] - x[0]) + (to[1] - x[1]) * (to[1] - x[1]) +
+                                   (to[2] - x[2]) * (to[2] - x[2]));
+        const double duration = length / l->path[k].speed;
+        const double fraction = duration > left ? left / duration : 1.0;
+        for (int d = 0; d < 3; ++d)
+            x[d] = fraction < 1.0 ? x[d] + fraction * (to[d] - x[d]) : to[d];
+        left -= duration;
+    }
+}
+
+/* The first axis across the beam: the coordinate axis least aligned with
+ * the direction d (within the simulated plane in 2D), made normal to d. */
+static void beam_across(int dim, const double d[3], double across[3])
+{
+    int least = 0;
+    for (int k = 1; k < dim; ++k)
+        if (fabs(d[k]) < fabs(d[least]))
+            least = k;
+    double norm = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        across[k] = (k == least ? 1.0 : 0.0) - d[least] * d[k];
+        norm += across[k] * across[k];
+    }
+    for (int k = 0; k < 3; ++k)
+        across[k] /= sqrt(norm);
+}
+
+/* Bin nodes across the beam per lateral axis (odd, the middle one on the
+ * axis) and along it (from above the domain to below it). */
+static int lay_out_bins(amsph_sim *s)
+{
+    const amsph_case *c = &s->config;
+    const amsph_laser_settings *l = &c->laser;
+    laser_params *p = &s->laser.params;
+    const double reach = sqrt((double)c->dim) * l->bin_size;
+    if (reach > s->support)
+        return amsph_fail("laser.bin_size %g m is too large: a bin node gathers its particles from "
+                          "the grid cells around it, which needs bin_size * sqrt(%d) <= the kernel "
+                          "support %g m; use bin_size <= %g m",
+                          l->bin_size, c->dim, s->support, s->support / sqrt((double)c->dim));
+    double extent = 0.0; /* of the domain along the beam */
+    for (int k = 0; k < c->dim; ++k)
+        extent += fabs(l->direction[k]) * (c->domain_max[k] - c->domain_min[k]);
+    const double half = ceil(l->window * l->radius / l->bin_size);
+    const double depth = ceil(extent / l->bin_size) + 1.0;
+    const double columns = pow(2.0 * half + 1.0, c->dim - 1);
+    if (columns * depth > MAX_BIN_NODES)
+        return amsph_fail("the laser bin grid would have %.3g nodes (at most %g): raise "
+                          "laser.bin_size or lower laser.window",
+                          columns * depth, (double)MAX_BIN_NODES);
+    p->lateral_nodes = 2 * (int)half + 1;
+    p->depth_nodes = (int)depth;
+    s->laser.columns = (int)columns;
+    s->laser.nodes = (int)(columns * depth);
+    const size_t bytes = (size_t)s->laser.nodes * sizeof(amsph_real);
+    AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_weight));
+    AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_volume));
+    return amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_power);
+}
+
+int amsph_laser_setup(amsph_sim *s, amsph_host_particles *h)
+{
+    const amsph_case *c = &s->config;
+    const amsph_laser_settings *l = &c->laser;
+    laser_params *p = &s->laser.params;
+    memset(&s->laser, 0, sizeof s->laser);
+    double across[3];
+    beam_across(c->dim, l->direction, across);
+    for (int k = 0; k < 3; ++k) {
+        p->direction[k] = (amsph_real)l->direction[k];
+        p->across[k] = (amsph_real)across[k];
+    }
+    p->radius = (amsph_real)l->radius;
+    p->bin_size = (amsph_real)l->bin_size;
+    const int volumetric = l->absorption == AMSPH_ABSORPTION_VOLUMETRIC;
+    p->absorption = (amsph_real)(volumetric ? l->absorption_coefficient : l->absorptivity);
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LASER_POWER));
+    return volumetric ? lay_out_bins(s) : 0;
+}
+
+/* Beam state at time t: centre (wrapped into the domain on periodic axes,
+ * so that every particle is less than a domain length from it), peak
+ * irradiance 2P/(pi r_l^2) (Russell 2018 Eq. 3.42) and the depth of the
+ * first bin node, the least depth of the domain's corners. */
+static void aim_beam(amsph_sim *s, double t, double power)
+{
+    const amsph_case *c = &s->config;
+    const amsph_laser_settings *l = &c->laser;
+    laser_params *p = &s->laser.params;
+    double centre[3];
+    amsph_laser_beam_centre(c, t, centre);
+    for (int k = 0; k < c->dim; ++k) {
+        const double length = c->domain_max[k] - c->domain_min[k];
+        if (c->periodic[k])
+            centre[k] -= length * floor((centre[k] - c->domain_min[k]) / length);
+    }
+    double depth_lo = 0.0;
+    for (int k = 0; k < c->dim; ++k)
+        depth_lo += fmin(l->direction[k] * (c->domain_min[k] - centre[k]),
+                         l->direction[k] * (c->domain_max[k] - centre[k]));
+    for (int k = 0; k < 3; ++k)
+        p->centre[k] = (amsph_real)centre[k];
+    p->depth_lo = (amsph_real)depth_lo;
+    p->peak_intensity = (amsph_real)(2.0 * power / (PI * l->radius * l->radius));
+}
+
+static amsph_arg field(amsph_sim *s, amsph_field_id f)
+{
+    return amsph_arg_buffer(s->particles.field[f]);
+}
+
+/* Russell 2018 §3.2.2: volumes onto the bins, Beer-Lambert down the
+ * columns, power back to the particles (kernels/laser.cl). */
+static int absorb_volumetric(amsph_sim *s)
+{
+    amsph_backend *b = s->backend;
+    amsph_laser_state *l = &s->laser;
+    const int n = s->particles.n;
+    const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
+    const amsph_arg params = amsph_arg_bytes(&l->params, sizeof l->params);
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", l->nodes, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY), grid,
+                             amsph_arg_buffer(s->grid.cell_start), params, amsph_arg_int(l->nodes),
+                             amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_volume)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", l->columns, amsph_arg_buffer(l->bin_volume),
+                             params, amsph_arg_int(l->columns), amsph_arg_buffer(l->bin_power)));
+    return AMSPH_LAUNCH(b, "laser_gather_power", n, field(s, AMSPH_FIELD_POSITION),
+                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY), amsph_arg_int(n),
+                        grid, params, amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_power),
+                        field(s, AMSPH_FIELD_LASER_POWER), amsph_arg_buffer(s->work));
+}
+
+/* Fuchs et al. 2022 Eq. 17 on the faces turned to the beam. */
+static int absorb_surface(amsph_sim *s)
+{
+    const int n = s->particles.n;
+    return AMSPH_LAUNCH(s->backend, "laser_surface_absorb", n, field(s, AMSPH_FIELD_POSITION),
+                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
+                        amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
+                        amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                        amsph_arg_buffer(s->grid.cell_start),
+                        amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(s->h),
+                        field(s, AMSPH_FIELD_LASER_POWER), amsph_arg_buffer(s->work));
+}
+
+/* laser_power for the beam at time t with the given power. */
+static int absorb(amsph_sim *s, double t, double power)
+{
+    _Static_assert(sizeof(laser_params) <= sizeof(((amsph_arg *)0)->value.bytes),
+                   "laser_params must fit a kernel argument");
+    aim_beam(s, t, power);
+    const int n = s->particles.n;
+    if (s->laser.params.peak_intensity == 0) { /* off: no light anywhere */
+        s->laser.absorbed_power = 0.0;
+        const int words = n * (int)(amsph_field_bytes(AMSPH_FIELD_LASER_POWER) / 4);
+        return AMSPH_LAUNCH(s->backend, "fill_words", words, field(s, AMSPH_FIELD_LASER_POWER),
+                            amsph_arg_int(words), amsph_arg_uint(0));
+    }
+    if (s->config.laser.absorption == AMSPH_ABSORPTION_VOLUMETRIC)
+        AMSPH_CHECK(absorb_volumetric(s));
+    else
+        AMSPH_CHECK(absorb_surface(s));
+    return amsph_reduce_sum(s->backend, s->work, n, &s->laser.absorbed_power);
+}
+
+int amsph_laser_absorb(amsph_sim *s, double t)
+{
+    return absorb(s, t, amsph_laser_beam_power(&s->config, t));
+}
+
+int amsph_laser_absorb_step(amsph_sim *s, double t0, double t1)
+{
+    return absorb(s, 0.5 * (t0 + t1), amsph_laser_beam_energy(&s->config, t0, t1) / (t1 - t0));
+}
