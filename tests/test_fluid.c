@@ -27,15 +27,6 @@ static void stop_sim(amsph_backend *b, amsph_sim *s)
     amsph_backend_destroy(b);
 }
 
-static int load(const char *relative, amsph_case *c)
-{
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/cases/validation/%s", AMSPH_SOURCE_DIR, relative);
-    const int status = amsph_case_load(path, c, err, sizeof err);
-    CHECK(status == 0, "%s", err);
-    return status;
-}
-
 /* Steady-plus-transient channel flows of Morris, Fox & Zhu (1997) Eqs. 21, 22. */
 typedef double (*channel_solution)(double y, double t);
 static const double L = 1e-3, nu = 1e-6;
@@ -67,7 +58,7 @@ static double couette(double y, double t)
 static double channel_error(const char *file, channel_solution exact, double scale)
 {
     amsph_case c;
-    if (load(file, &c))
+    if (testing_load_case(file, &c))
         return INFINITY;
     amsph_backend *b = testing_backend(0);
     amsph_sim s;
@@ -123,7 +114,7 @@ static double fluid_volume(amsph_sim *s)
 static void test_dambreak_volume(const char *file)
 {
     amsph_case c;
-    if (load(file, &c))
+    if (testing_load_case(file, &c))
         return;
     amsph_sim s;
     amsph_backend *b = start_sim(&c, &s);
@@ -277,7 +268,7 @@ static void test_guard_stops_run(void)
 static void test_hydrostatic(void)
 {
     amsph_case c;
-    if (load("hydrostatic_2d.yaml", &c))
+    if (testing_load_case("hydrostatic_2d.yaml", &c))
         return;
     amsph_sim s;
     amsph_backend *b = start_sim(&c, &s);
@@ -308,7 +299,7 @@ static void test_hydrostatic(void)
 static void test_free_slip(void)
 {
     amsph_case c;
-    if (load("poiseuille_2d.yaml", &c))
+    if (testing_load_case("poiseuille_2d.yaml", &c))
         return;
     c.fluid.wall_slip = WALL_FREE_SLIP;
     amsph_sim s;
@@ -330,7 +321,7 @@ static void test_free_slip(void)
 static void test_dt_floor(void)
 {
     amsph_case c;
-    if (load("couette_2d.yaml", &c))
+    if (testing_load_case("couette_2d.yaml", &c))
         return;
     c.fluid.dt_min = 1.0; /* far above the viscous step of ~3e-4 s */
     amsph_sim s;
@@ -347,7 +338,7 @@ static void test_pressure_clamp(void)
 {
     for (int clamp = 0; clamp <= 1; ++clamp) {
         amsph_case c;
-        if (load("couette_2d.yaml", &c))
+        if (testing_load_case("couette_2d.yaml", &c))
             return;
         c.fluid.clamp_negative_pressure = clamp;
         c.fluid.background_pressure = 5.0;
@@ -382,7 +373,7 @@ static void test_tensile_correction(void)
 {
     for (int on = 0; on <= 1; ++on) {
         amsph_case c;
-        if (load("dambreak_2d.yaml", &c))
+        if (testing_load_case("dambreak_2d.yaml", &c))
             return;
         c.dx = 0.0146;
         c.fluid.tensile_correction = on ? 0.1 : 0.0;
@@ -407,7 +398,7 @@ static void test_pressure_gradient_balances_gravity(void)
 {
     for (int form = PRESSURE_RENORMALISED; form <= PRESSURE_SYMMETRIC; ++form) {
         amsph_case c;
-        if (load("hydrostatic_2d.yaml", &c))
+        if (testing_load_case("hydrostatic_2d.yaml", &c))
             return;
         c.fluid.pressure_gradient = form;
         amsph_sim s;

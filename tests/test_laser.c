@@ -23,15 +23,6 @@ static int parse(const char *text, amsph_case *c)
     return status;
 }
 
-static int load(const char *relative, amsph_case *c)
-{
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/cases/validation/%s", AMSPH_SOURCE_DIR, relative);
-    const int status = amsph_case_load(path, c, err, sizeof err);
-    CHECK(status == 0, "%s", err);
-    return status;
-}
-
 /* ---- schedule and path ---------------------------------------------------- */
 
 static const char *schedule_case =
@@ -345,7 +336,7 @@ static void test_reference(const char *text, const char *name)
  * Beer-Lambert itself. */
 static int load_slab(const char *file, double dx, amsph_case *c)
 {
-    if (load(file, c))
+    if (testing_load_case(file, c))
         return 1;
     c->dx = dx;
     c->laser.bin_size = dx;

@@ -13,15 +13,6 @@
 
 #define PI 3.14159265358979323846
 
-static int load(const char *relative, amsph_case *c)
-{
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/cases/validation/%s", AMSPH_SOURCE_DIR, relative);
-    const int status = amsph_case_load(path, c, err, sizeof err);
-    CHECK(status == 0, "%s", err);
-    return status;
-}
-
 static int parse(const char *text, amsph_case *c)
 {
     char err[1024];
@@ -79,7 +70,7 @@ static double square(double x, double y, double t)
 static void test_conduction_square(void)
 {
     amsph_case c;
-    if (load("conduction_2d.yaml", &c))
+    if (testing_load_case("conduction_2d.yaml", &c))
         return;
     c.dx = 0.02;
     double ledger = 1.0;
@@ -100,7 +91,7 @@ static double interface(double x, double y, double t)
 static void test_conduction_interface(void)
 {
     amsph_case c;
-    if (load("conduction_interface_1d.yaml", &c))
+    if (testing_load_case("conduction_interface_1d.yaml", &c))
         return;
     c.dx = 0.02; /* the periodic strip must span 3 kernel supports */
     c.domain_max[1] = 0.2;
@@ -147,7 +138,7 @@ static double melting_front(const amsph_host_particles *h, double dx)
 static void test_stefan(void)
 {
     amsph_case c;
-    if (load("stefan_1d.yaml", &c))
+    if (testing_load_case("stefan_1d.yaml", &c))
         return;
     const double lambda = neumann_lambda(1.0);
     CHECK(fabs(lambda - 0.6201) < 1e-3, "Neumann lambda %.5f for St = 1", lambda);
@@ -379,7 +370,7 @@ static void test_phase_rule(void)
 static void test_viscous_heating(void)
 {
     amsph_case c;
-    if (load("couette_2d.yaml", &c))
+    if (testing_load_case("couette_2d.yaml", &c))
         return;
     const double V = 2.5e-5, L = 1e-3, mu = 1e-3, rho = 1000;
     c.thermal.enabled = 1;
@@ -429,7 +420,7 @@ static void test_viscous_heating(void)
 static double slab_run(const char *file, double dx, amsph_sim *s, amsph_backend **b)
 {
     amsph_case c;
-    if (load(file, &c))
+    if (testing_load_case(file, &c))
         return NAN;
     c.dx = dx;
     c.laser.bin_size = dx; /* its default is the case's dx */
@@ -467,7 +458,7 @@ static void test_laser_slab(void)
 static void test_backends_agree(void)
 {
     amsph_case c;
-    if (load("conduction_2d.yaml", &c))
+    if (testing_load_case("conduction_2d.yaml", &c))
         return;
     c.dx = 0.05;
     c.end_time = 0.02;

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "backend.h"
+#include "case.h"
 #include "error.h"
 
 static int testing_passed, testing_failed;
@@ -55,5 +56,15 @@ static inline amsph_backend *testing_backend(int k)
 }
 
 #define TESTING_BACKENDS 2
+
+/* Loads cases/validation/<relative> (a failure fails the test). */
+static inline int testing_load_case(const char *relative, amsph_case *c)
+{
+    char path[1024], err[1024];
+    snprintf(path, sizeof path, "%s/cases/validation/%s", AMSPH_SOURCE_DIR, relative);
+    const int status = amsph_case_load(path, c, err, sizeof err);
+    CHECK(status == 0, "%s", err);
+    return status;
+}
 
 #endif
