@@ -126,14 +126,19 @@ static herr_t write_particles(hid_t file, const char *name, const amsph_host_par
     return status;
 }
 
+/* A sim scalar's HDF5 type (the union's members share its address). */
+static hid_t scalar_type(const amsph_sim_scalar *info)
+{
+    return info->integer ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE;
+}
+
 static herr_t write_scalars(hid_t file, const amsph_scalar_value *v)
 {
     hid_t group = H5Gcreate2(file, "sim", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     herr_t status = group < 0 ? -1 : 0;
     for (int k = 0; k < AMSPH_SIM_SCALAR_COUNT && status >= 0; ++k)
-        status = amsph_sim_scalars[k].integer
-                     ? amsph_h5_write_attribute(group, amsph_sim_scalars[k].name, H5T_NATIVE_LLONG, &v[k].integer)
-                     : amsph_h5_write_attribute(group, amsph_sim_scalars[k].name, H5T_NATIVE_DOUBLE, &v[k].real);
+        status = amsph_h5_write_attribute(group, amsph_sim_scalars[k].name, scalar_type(&amsph_sim_scalars[k]),
+                                          &v[k]);
     if (group >= 0)
         H5Gclose(group);
     return status;
@@ -296,11 +301,9 @@ static int read_particles(hid_t group, const char *what, void *target)
 static int read_scalars(hid_t group, const char *what, void *target)
 {
     amsph_scalar_value *v = target;
-    for (int k = 0; k < AMSPH_SIM_SCALAR_COUNT; ++k) {
-        const amsph_sim_scalar *info = &amsph_sim_scalars[k];
-        AMSPH_CHECK(info->integer ? amsph_h5_read_attribute(group, what, info->name, H5T_NATIVE_LLONG, &v[k].integer)
-                                  : amsph_h5_read_attribute(group, what, info->name, H5T_NATIVE_DOUBLE, &v[k].real));
-    }
+    for (int k = 0; k < AMSPH_SIM_SCALAR_COUNT; ++k)
+        AMSPH_CHECK(amsph_h5_read_attribute(group, what, amsph_sim_scalars[k].name,
+                                            scalar_type(&amsph_sim_scalars[k]), &v[k]));
     return 0;
 }
 

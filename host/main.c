@@ -234,11 +234,12 @@ static int command_run(const cli_options *o)
     catch_stop_signals();
     amsph_case c;
     amsph_checkpoint ck = {0};
-    int status = prepare_run(o, &c, &ck);
-    const char *backend = o->backend ? o->backend : c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
     amsph_backend *b = NULL;
-    if (!status && open_backend(backend, o->device >= 0 ? o->device : c.device, &b))
-        status = 1;
+    int status = prepare_run(o, &c, &ck);
+    if (!status) {
+        const char *backend = c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
+        status = open_backend(o->backend ? o->backend : backend, o->device >= 0 ? o->device : c.device, &b);
+    }
     if (status) {
         amsph_checkpoint_free(&ck);
         return status;

@@ -218,7 +218,8 @@ static int write_xdmf(const amsph_output *o)
     for (int k = o->first; k < o->list.count; ++k)
         write_xdmf_grid(f, o, k);
     fprintf(f, "    </Grid>\n  </Domain>\n</Xdmf>\n");
-    const int status = fclose(f) ? amsph_fail("out of host memory for %s", path) : amsph_write_file(path, text, size);
+    const int status =
+        fclose(f) ? amsph_fail("out of host memory for %s", path) : amsph_write_file(path, text, size);
     free(text);
     return status;
 }

@@ -133,11 +133,12 @@ static int write_output(run *r)
     amsph_host_particles host;
     const double now = wall_seconds();
     const double interval = now - r->row_wall;
+    const double particle_steps = r->pr.particle_steps - r->row_particle_steps;
     const amsph_series_sample sample = {
         .sim = s,
         .particles = &host,
         .wall_seconds = r->wall_before + now - r->pr.start,
-        .particle_steps_per_second = interval > 0.0 ? (r->pr.particle_steps - r->row_particle_steps) / interval : 0.0,
+        .particle_steps_per_second = interval > 0.0 ? particle_steps / interval : 0.0,
     };
     int status = amsph_particles_download(&s->particles, &host);
     if (!status)
@@ -225,7 +226,8 @@ static int start(run *r, amsph_sim *s, const amsph_run_options *options)
     r->snapshot_step = -1;
     const amsph_run_record *resume = options->resume;
     const int in_place = resume && amsph_output_holds(options->outdir, options->resume_path);
-    AMSPH_CHECK(amsph_output_open(&r->out, options->outdir, s->config.dim, s->config.dx, options->force || in_place));
+    const int force = options->force || in_place;
+    AMSPH_CHECK(amsph_output_open(&r->out, options->outdir, s->config.dim, s->config.dx, force));
     if (resume) {
         AMSPH_CHECK(amsph_output_continue(&r->out, &resume->snapshots, in_place));
         r->next_output = resume->next_output;

@@ -7,7 +7,7 @@
  * field set) is refused as bad input with a message saying which. A write
  * that fails for lack of space fails the run with a message and leaves the
  * last checkpoint intact. A stop request writes a checkpoint and a final
- * snapshot. */
+ * snapshot; checkpoints also come every checkpoint_interval of wall time. */
 #include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
@@ -403,6 +403,25 @@ static void test_stop_request(amsph_backend *b)
     amsph_checkpoint_free(&ck);
 }
 
+/* A checkpoint every (tiny) interval of wall time, without a stop. */
+static void test_periodic_checkpoint(amsph_backend *b)
+{
+    amsph_case c;
+    parse(cube_3d, &c);
+    char dir[128];
+    make_dir(dir, sizeof dir, "periodic");
+    amsph_sim s;
+    const amsph_run_options options = {.outdir = dir, .quiet = 1, .checkpoint_interval = 1e-9};
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_run(&s, &options));
+    amsph_checkpoint ck = {0};
+    if (!read_checkpoint(dir, &ck))
+        CHECK(saved_scalar(&ck, "step") == s.step, "the last checkpoint is at step %lld, the run ended at %lld",
+              saved_scalar(&ck, "step"), s.step);
+    amsph_checkpoint_free(&ck);
+    amsph_sim_free(&s);
+}
+
 int main(void)
 {
     for (int k = 0; k < TESTING_BACKENDS; ++k)
@@ -416,6 +435,7 @@ int main(void)
     test_refusals(b, dir);
     test_full_disk(b, dir);
     test_stop_request(b);
+    test_periodic_checkpoint(b);
     amsph_backend_destroy(b);
     return testing_finish();
 }
