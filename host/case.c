@@ -22,6 +22,8 @@
 #include <string.h>
 #include <yaml.h>
 
+#include "hash.h"
+
 #define CASE_ERROR 2
 #define MAX_FILE_BYTES (64u << 20) /* a case file is a few kB; refuse absurd ones */
 #define SHOWN_MAX 40               /* user text longer than this is cut in messages */
@@ -1398,6 +1400,7 @@ int amsph_case_parse(const char *text, size_t len, const char *name, amsph_case 
         len = 0;
     memset(c, 0, sizeof *c);
     snprintf(c->path, sizeof c->path, "%s", p.name);
+    c->text_hash = text ? amsph_hash(AMSPH_HASH_START, text, len) : AMSPH_HASH_START;
     size_t deep = too_deep_line(text, len);
     if (deep)
         return fail(&p, deep, "lists or maps nested more than %d levels deep", MAX_FLOW_DEPTH);

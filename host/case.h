@@ -148,6 +148,7 @@ typedef struct {
 
 typedef struct {
     char path[512];       /* the file it came from (or the name given to the string parser) */
+    unsigned long long text_hash; /* amsph_hash of the case text: a restart must match it */
     int dim;              /* 2 or 3 */
     double domain_min[3]; /* m; components >= dim are 0 */
     double domain_max[3];

@@ -1,5 +1,8 @@
 /* The amsph command line. Exit status: 0 success, 1 a run failed, 2 bad
- * input (command line or case file). */
+ * input (command line, case file or restart file), 128 + the signal number
+ * for a run stopped by SIGINT or SIGTERM (after its checkpoint). */
+#include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,20 +10,27 @@
 #include "backend.h"
 #include "bench.h"
 #include "case.h"
+#include "checkpoint.h"
 #include "error.h"
+#include "output.h"
+#include "series.h"
 #include "sim.h"
 
-#define EXIT_BAD_INPUT 2
+#define EXIT_BAD_INPUT AMSPH_BAD_INPUT
+#define DEFAULT_CHECKPOINT_INTERVAL 1800.0 /* wall seconds */
 
 static const char usage[] =
     "usage: amsph <command> [options]\n"
     "\n"
     "commands:\n"
-    "  run CASE.yaml -o OUTDIR [--backend openmp|opencl] [--device N] [--quiet]\n"
-    "                      run a case; snapshots OUTDIR/snap_NNNNNN.h5 and OUTDIR/snapshots.xmf\n"
+    "  run CASE.yaml -o OUTDIR [--backend openmp|opencl] [--device N] [--quiet] [--force]\n"
+    "      [--max-steps N] [--checkpoint-interval SECONDS] [--restart CHECKPOINT]\n"
+    "                      run a case; snapshots OUTDIR/snap_NNNNNN.h5 and OUTDIR/snapshots.xmf,\n"
+    "                      diagnostics OUTDIR/series.csv, checkpoints OUTDIR/checkpoint.h5\n"
     "  check CASE.yaml     validate a case file without running it\n"
     "  devices             list the OpenCL devices and the OpenMP backend\n"
     "  keys                print the case-file key reference (Markdown)\n"
+    "  columns             print the series.csv column reference (Markdown)\n"
     "  bench grid [--particles N] [--repeat R] [--backend B] [--device N]\n"
     "                      time the sorted-grid build (3D, random particles)\n"
     "  --help              this text\n"
@@ -34,6 +44,10 @@ typedef struct {
     const char *backend; /* NULL: the case's */
     int device;          /* -1: the case's */
     int quiet;
+    int force;
+    long long max_steps;        /* 0: no limit */
+    double checkpoint_interval; /* wall seconds; 0: none */
+    const char *restart;        /* checkpoint to continue from */
     long long particles;
     int repeat;
 } cli_options;
@@ -50,6 +64,16 @@ static int parse_int_option(const char *text, long long min, long long *out)
     char *end = NULL;
     const long long v = strtoll(text, &end, 10);
     if (!end || *end || end == text || v < min)
+        return 1;
+    *out = v;
+    return 0;
+}
+
+static int parse_seconds_option(const char *text, double *out)
+{
+    char *end = NULL;
+    const double v = strtod(text, &end);
+    if (!end || *end || end == text || !isfinite(v) || v < 0.0)
         return 1;
     *out = v;
     return 0;
@@ -86,6 +110,22 @@ static int parse_options(int argc, char **argv, cli_options *o)
                 return bad_usage("--repeat takes a count from 1 to 100000", has_value ? argv[i + 1] : NULL);
             o->repeat = (int)v;
             ++i;
+        } else if (!strcmp(a, "--max-steps")) {
+            if (!has_value || parse_int_option(argv[i + 1], 1, &v))
+                return bad_usage("--max-steps takes a step count >= 1", has_value ? argv[i + 1] : NULL);
+            o->max_steps = v;
+            ++i;
+        } else if (!strcmp(a, "--checkpoint-interval")) {
+            if (!has_value || parse_seconds_option(argv[i + 1], &o->checkpoint_interval))
+                return bad_usage("--checkpoint-interval takes wall seconds >= 0 (0: none)",
+                                 has_value ? argv[i + 1] : NULL);
+            ++i;
+        } else if (!strcmp(a, "--restart")) {
+            if (!has_value)
+                return bad_usage("--restart needs a checkpoint file", NULL);
+            o->restart = argv[++i];
+        } else if (!strcmp(a, "--force")) {
+            o->force = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o->quiet = 1;
         } else if (a[0] == '-') {
@@ -120,23 +160,102 @@ static int open_backend(const char *name, int device, amsph_backend **b)
     return 0;
 }
 
-static int command_run(const cli_options *o)
+/* The signal that asked a run to stop (0: none). The handler only sets it;
+ * the run checks it after every step. A second signal ends the process. */
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int signo) { stop_signal = signo; }
+
+static void catch_stop_signals(void)
 {
-    amsph_case c;
-    int status = load_case(o->case_path, &c);
+    struct sigaction action;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_stop_signal;
+    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, NULL);
+    sigaction(SIGTERM, &action, NULL);
+}
+
+/* Reports a failed step of command_run; returns its exit status. */
+static int failed(int status)
+{
+    fprintf(stderr, "amsph: %s\n", amsph_last_error());
+    return status == AMSPH_BAD_INPUT ? EXIT_BAD_INPUT : 1;
+}
+
+/* The sim, created from the case or restored from the checkpoint. */
+static int start_sim(const cli_options *o, const amsph_case *c, amsph_backend *b, amsph_checkpoint *ck,
+                     amsph_sim *sim)
+{
+    if (!o->restart)
+        return amsph_sim_create(c, b, sim);
+    AMSPH_CHECK(amsph_sim_restore(c, b, &ck->state, sim));
+    if (o->max_steps > 0 && sim->step >= o->max_steps)
+        return amsph_bad_input("--max-steps %lld: the checkpoint %s is at step %lld already", o->max_steps,
+                               o->restart, sim->step);
+    return 0;
+}
+
+static void report_end(const cli_options *o, const amsph_sim *sim)
+{
+    if (stop_signal)
+        fprintf(stderr, "amsph: stopped by signal %d at step %lld (t = %.6g s); restart from %s/checkpoint.h5\n",
+                (int)stop_signal, sim->step, sim->time, o->outdir);
+    else if (o->quiet)
+        return;
+    else if (sim->time < sim->config.end_time * (1.0 - 1e-12))
+        fprintf(stderr, "amsph: stopped at step %lld (t = %.6g s), --max-steps; restart from %s/checkpoint.h5\n",
+                sim->step, sim->time, o->outdir);
+    else
+        fprintf(stderr, "amsph: done, %lld steps, %lld particles removed; output in %s\n", sim->step,
+                sim->particles.removed, o->outdir);
+}
+
+/* Loads what a run needs before any work: the case, the checkpoint to
+ * restart from, and an output directory it may write into. */
+static int prepare_run(const cli_options *o, amsph_case *c, amsph_checkpoint *ck)
+{
+    int status = load_case(o->case_path, c);
     if (status)
         return status;
     if (!o->outdir)
         return bad_usage("run needs an output directory: -o OUTDIR", NULL);
-    const char *backend = o->backend ? o->backend : c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
+    if (o->restart && ((status = amsph_checkpoint_read(o->restart, ck)) ||
+                       (status = amsph_checkpoint_check_case(ck, o->restart, c))))
+        return failed(status);
+    const int in_place = o->restart && amsph_output_holds(o->outdir, o->restart);
+    status = amsph_output_check_dir(o->outdir, o->force || in_place);
+    return status ? failed(status) : 0;
+}
+
+static int command_run(const cli_options *o)
+{
+    catch_stop_signals();
+    amsph_case c;
+    amsph_checkpoint ck = {0};
     amsph_backend *b = NULL;
-    if (open_backend(backend, o->device >= 0 ? o->device : c.device, &b))
-        return 1;
+    int status = prepare_run(o, &c, &ck);
+    if (!status) {
+        const char *backend = c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
+        status = open_backend(o->backend ? o->backend : backend, o->device >= 0 ? o->device : c.device, &b);
+    }
+    if (status) {
+        amsph_checkpoint_free(&ck);
+        return status;
+    }
     if (!o->quiet)
         fprintf(stderr, "amsph: %s on %s\n", c.path, b->description);
     amsph_sim sim;
-    const amsph_run_options run = {.outdir = o->outdir, .quiet = o->quiet};
-    status = amsph_sim_create(&c, b, &sim);
+    const amsph_run_options run = {.outdir = o->outdir,
+                                   .quiet = o->quiet,
+                                   .force = o->force,
+                                   .max_steps = o->max_steps,
+                                   .checkpoint_interval = o->checkpoint_interval,
+                                   .stop = &stop_signal,
+                                   .resume = o->restart ? &ck.run : NULL,
+                                   .resume_path = o->restart};
+    status = start_sim(o, &c, b, &ck, &sim);
     if (!status) {
         if (!o->quiet)
             fprintf(stderr, "amsph: %d particles, h = %g m, %.0f device bytes per particle\n",
@@ -144,13 +263,13 @@ static int command_run(const cli_options *o)
         status = amsph_sim_run(&sim, &run);
     }
     if (status)
-        fprintf(stderr, "amsph: %s\n", amsph_last_error());
-    else if (!o->quiet)
-        fprintf(stderr, "amsph: done, %lld steps, %lld particles removed; output in %s\n", sim.step,
-                sim.particles.removed, o->outdir);
+        status = failed(status);
+    else
+        report_end(o, &sim);
     amsph_sim_free(&sim);
+    amsph_checkpoint_free(&ck);
     amsph_backend_destroy(b);
-    return status ? 1 : 0;
+    return status ? status : stop_signal ? 128 + (int)stop_signal : 0;
 }
 
 static int command_check(const cli_options *o)
@@ -185,7 +304,7 @@ int main(int argc, char **argv)
         return argc < 2 ? EXIT_BAD_INPUT : 0;
     }
     const char *command = argv[1];
-    cli_options o = {.device = -1};
+    cli_options o = {.device = -1, .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL};
     int status = parse_options(argc - 2, argv + 2, &o);
     if (status)
         return status;
@@ -199,6 +318,10 @@ int main(int argc, char **argv)
     }
     if (!strcmp(command, "keys")) {
         amsph_case_print_keys(stdout);
+        return 0;
+    }
+    if (!strcmp(command, "columns")) {
+        amsph_series_print_columns(stdout);
         return 0;
     }
     if (!strcmp(command, "bench"))

@@ -1,5 +1,6 @@
 #include "output.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <hdf5.h>
 #include <stdio.h>
@@ -8,6 +9,83 @@
 #include <sys/stat.h>
 
 #include "error.h"
+#include "h5.h"
+
+int amsph_snapshot_list_add(amsph_snapshot_list *l, double time, int particles)
+{
+    if (l->count == l->capacity) {
+        const int capacity = l->capacity ? 2 * l->capacity : 64;
+        double *times = realloc(l->time, (size_t)capacity * sizeof *times);
+        if (times)
+            l->time = times;
+        int *counts = realloc(l->particles, (size_t)capacity * sizeof *counts);
+        if (counts)
+            l->particles = counts;
+        if (!times || !counts)
+            return amsph_fail("out of host memory for the snapshot index");
+        l->capacity = capacity;
+    }
+    l->time[l->count] = time;
+    l->particles[l->count] = particles;
+    ++l->count;
+    return 0;
+}
+
+int amsph_snapshot_list_copy(amsph_snapshot_list *dst, const amsph_snapshot_list *src)
+{
+    for (int k = 0; k < src->count; ++k)
+        AMSPH_CHECK(amsph_snapshot_list_add(dst, src->time[k], src->particles[k]));
+    return 0;
+}
+
+void amsph_snapshot_list_free(amsph_snapshot_list *l)
+{
+    free(l->time);
+    free(l->particles);
+    memset(l, 0, sizeof *l);
+}
+
+int amsph_output_check_dir(const char *dir, int force)
+{
+    struct stat st;
+    if (stat(dir, &st))
+        return 0; /* missing, or unreachable: creating it says why */
+    if (!S_ISDIR(st.st_mode))
+        return amsph_bad_input("output directory %s exists and is not a directory", dir);
+    DIR *d = opendir(dir);
+    if (!d)
+        return amsph_fail("cannot read the output directory %s: %s", dir, strerror(errno));
+    const struct dirent *e;
+    while ((e = readdir(d)) && (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")))
+        ;
+    char example[256];
+    snprintf(example, sizeof example, "%s", e ? e->d_name : "");
+    closedir(d);
+    if (example[0] && !force)
+        return amsph_bad_input("output directory %s already holds files (%s, ...); choose another "
+                               "or pass --force to replace files of the same names",
+                               dir, example);
+    return 0;
+}
+
+/* The directory part of a path ("." when it has none). */
+static void directory_of(const char *file, char *dir, size_t size)
+{
+    snprintf(dir, size, "%s", file);
+    char *slash = strrchr(dir, '/');
+    if (!slash)
+        snprintf(dir, size, ".");
+    else
+        slash[slash == dir ? 1 : 0] = '\0';
+}
+
+int amsph_output_holds(const char *dir, const char *file)
+{
+    char parent[1024];
+    directory_of(file, parent, sizeof parent);
+    struct stat a, b;
+    return !stat(dir, &a) && !stat(parent, &b) && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
 
 static int make_dirs(const char *dir)
 {
@@ -27,96 +105,72 @@ static int make_dirs(const char *dir)
     return 0;
 }
 
-int amsph_output_open(amsph_output *o, const char *dir, int dim, double dx)
+int amsph_output_open(amsph_output *o, const char *dir, int dim, double dx, int force)
 {
     memset(o, 0, sizeof *o);
     if (snprintf(o->dir, sizeof o->dir, "%s", dir) >= (int)sizeof o->dir)
-        return amsph_fail("output directory name too long: %s", dir);
+        return amsph_bad_input("output directory name too long: %s", dir);
     o->dim = dim;
     o->dx = dx;
+    amsph_h5_quiet();
+    AMSPH_CHECK(amsph_output_check_dir(dir, force));
     return make_dirs(dir);
+}
+
+int amsph_output_continue(amsph_output *o, const amsph_snapshot_list *earlier, int in_place)
+{
+    AMSPH_CHECK(amsph_snapshot_list_copy(&o->list, earlier));
+    o->first = in_place ? 0 : earlier->count;
+    return 0;
 }
 
 void amsph_output_close(amsph_output *o)
 {
-    free(o->times);
-    free(o->particles);
+    amsph_snapshot_list_free(&o->list);
     memset(o, 0, sizeof *o);
 }
 
-static hid_t native_type(amsph_field_type t)
+int amsph_output_path(const amsph_output *o, const char *name, char *path, size_t size)
 {
-    switch (t) {
-    case AMSPH_TYPE_INT:
-        return H5T_NATIVE_INT;
-    case AMSPH_TYPE_UINT:
-        return H5T_NATIVE_UINT;
-    case AMSPH_TYPE_REAL:
-        break;
-    }
-    return sizeof(amsph_real) == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    if (snprintf(path, size, "%s/%s", o->dir, name) >= (int)size)
+        return amsph_fail("path too long: %s/%s", o->dir, name);
+    return 0;
 }
 
-static herr_t write_scalar_attribute(hid_t object, const char *name, hid_t type, const void *value)
+static herr_t write_snapshot_contents(hid_t file, const amsph_output *o, const amsph_host_particles *h,
+                                      double time, long long step)
 {
-    hid_t space = H5Screate(H5S_SCALAR);
-    hid_t attr = H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    herr_t status = attr < 0 ? -1 : H5Awrite(attr, type, value);
-    if (attr >= 0)
-        H5Aclose(attr);
-    H5Sclose(space);
-    return status;
-}
-
-static herr_t write_string_attribute(hid_t object, const char *name, const char *value)
-{
-    hid_t type = H5Tcopy(H5T_C_S1);
-    H5Tset_size(type, strlen(value) + 1);
-    herr_t status = write_scalar_attribute(object, name, type, value);
-    H5Tclose(type);
-    return status;
-}
-
-static herr_t write_field(hid_t file, const amsph_host_particles *h, amsph_field_id f)
-{
-    const amsph_field_info *info = &amsph_fields[f];
-    hsize_t dims[2] = {(hsize_t)h->n, (hsize_t)info->components};
-    hid_t space = H5Screate_simple(info->components > 1 ? 2 : 1, dims, NULL);
-    hid_t type = native_type(info->type);
-    hid_t set = H5Dcreate2(file, info->name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    herr_t status = set < 0 ? -1 : H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, h->data[f]);
-    if (status >= 0)
-        status = write_string_attribute(set, "unit", info->unit);
-    if (set >= 0)
-        H5Dclose(set);
-    H5Sclose(space);
-    return status;
-}
-
-static int write_snapshot_file(const char *path, const amsph_output *o,
-                               const amsph_host_particles *h, double time, long long step)
-{
-    hid_t file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (file < 0)
-        return amsph_fail("cannot create %s (is the directory writable, the disk full?)", path);
     herr_t status = 0;
     for (int f = 0; f < AMSPH_FIELD_COUNT && status >= 0; ++f)
         if (h->data[f] && (amsph_fields[f].flags & AMSPH_FIELD_OUTPUT))
-            status = write_field(file, h, (amsph_field_id)f);
-    const int dim = o->dim;
+            status = amsph_h5_write_field(file, h, (amsph_field_id)f);
     if (status >= 0)
-        status = write_scalar_attribute(file, "time", H5T_NATIVE_DOUBLE, &time);
+        status = amsph_h5_write_attribute(file, "time", H5T_NATIVE_DOUBLE, &time);
     if (status >= 0)
-        status = write_scalar_attribute(file, "step", H5T_NATIVE_LLONG, &step);
+        status = amsph_h5_write_attribute(file, "step", H5T_NATIVE_LLONG, &step);
     if (status >= 0)
-        status = write_scalar_attribute(file, "dim", H5T_NATIVE_INT, &dim);
+        status = amsph_h5_write_attribute(file, "dim", H5T_NATIVE_INT, &o->dim);
     if (status >= 0)
-        status = write_scalar_attribute(file, "dx", H5T_NATIVE_DOUBLE, &o->dx);
-    if (H5Fclose(file) < 0 || status < 0) {
-        remove(path);
-        return amsph_fail("writing %s failed (disk full?)", path);
+        status = amsph_h5_write_attribute(file, "dx", H5T_NATIVE_DOUBLE, &o->dx);
+    return status;
+}
+
+static int write_snapshot_file(const char *path, const amsph_output *o, const amsph_host_particles *h,
+                               double time, long long step)
+{
+    hid_t file = amsph_h5_create_in_memory(path);
+    if (file < 0)
+        return amsph_fail("cannot create %s in memory", path);
+    if (write_snapshot_contents(file, o, h, time, step) < 0) {
+        H5Fclose(file);
+        return amsph_fail("cannot assemble %s in memory (out of memory?)", path);
     }
-    return 0;
+    unsigned char *image = NULL;
+    size_t size = 0;
+    AMSPH_CHECK(amsph_h5_close_to_image(file, path, 0, &image, &size));
+    const int status = amsph_write_file(path, image, size);
+    free(image);
+    return status;
 }
 
 static const char *xdmf_number_type(amsph_field_type t)
@@ -126,9 +180,9 @@ static const char *xdmf_number_type(amsph_field_type t)
 
 static void write_xdmf_grid(FILE *f, const amsph_output *o, int k)
 {
-    const int n = o->particles[k];
+    const int n = o->list.particles[k];
     fprintf(f, "      <Grid Name=\"snap_%06d\" GridType=\"Uniform\">\n", k);
-    fprintf(f, "        <Time Value=\"%.17g\"/>\n", o->times[k]);
+    fprintf(f, "        <Time Value=\"%.17g\"/>\n", o->list.time[k]);
     fprintf(f, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", n);
     fprintf(f, "        <Geometry GeometryType=\"XYZ\">\n");
     fprintf(f, "          <DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"%zu\" "
@@ -153,48 +207,33 @@ static void write_xdmf_grid(FILE *f, const amsph_output *o, int k)
 
 static int write_xdmf(const amsph_output *o)
 {
-    char path[1100], tmp[1110];
-    snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
+    char path[1100], *text = NULL;
+    size_t size = 0;
+    AMSPH_CHECK(amsph_output_path(o, "snapshots.xmf", path, sizeof path));
+    FILE *f = open_memstream(&text, &size);
     if (!f)
-        return amsph_fail("cannot write %s: %s", tmp, strerror(errno));
+        return amsph_fail("out of host memory for %s", path);
     fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
     fprintf(f, "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-    for (int k = 0; k < o->count; ++k)
+    for (int k = o->first; k < o->list.count; ++k)
         write_xdmf_grid(f, o, k);
     fprintf(f, "    </Grid>\n  </Domain>\n</Xdmf>\n");
-    if (fclose(f) || rename(tmp, path))
-        return amsph_fail("cannot write %s: %s", path, strerror(errno));
-    return 0;
+    const int status =
+        fclose(f) ? amsph_fail("out of host memory for %s", path) : amsph_write_file(path, text, size);
+    free(text);
+    return status;
 }
 
 int amsph_output_snapshot(amsph_output *o, const amsph_host_particles *h, double time, long long step)
 {
-    char path[1100], tmp[1110];
-    snprintf(path, sizeof path, "%s/snap_%06d.h5", o->dir, o->count);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    AMSPH_CHECK(write_snapshot_file(tmp, o, h, time, step));
-    if (rename(tmp, path))
-        return amsph_fail("cannot rename %s to %s: %s", tmp, path, strerror(errno));
-    if (o->count == o->capacity) {
-        const int capacity = o->capacity ? 2 * o->capacity : 64;
-        double *times = realloc(o->times, (size_t)capacity * sizeof *times);
-        if (times)
-            o->times = times;
-        int *particles = realloc(o->particles, (size_t)capacity * sizeof *particles);
-        if (particles)
-            o->particles = particles;
-        if (!times || !particles)
-            return amsph_fail("out of host memory for the snapshot index");
-        o->capacity = capacity;
-    }
-    o->times[o->count] = time;
-    o->particles[o->count] = h->n;
+    char name[32], path[1100];
+    snprintf(name, sizeof name, "snap_%06d.h5", o->list.count);
+    AMSPH_CHECK(amsph_output_path(o, name, path, sizeof path));
+    AMSPH_CHECK(write_snapshot_file(path, o, h, time, step));
+    AMSPH_CHECK(amsph_snapshot_list_add(&o->list, time, h->n));
     o->present = 0;
     for (int f = 0; f < AMSPH_FIELD_COUNT; ++f)
         if (h->data[f] && (amsph_fields[f].flags & AMSPH_FIELD_OUTPUT))
             o->present |= 1u << f;
-    ++o->count;
     return write_xdmf(o);
 }

@@ -6,27 +6,55 @@
  * mass, kind, material, id, and temperature, liquid_fraction when present),
  * each with a string attribute `unit`; root attributes time (s), step, dim,
  * dx (m). Files are written under a temporary name and renamed, so a crash
- * never leaves a half-written snapshot under the final name. */
+ * never leaves a half-written snapshot under the final name.
+ *
+ * Snapshots are numbered over the whole simulation, restarts included: a run
+ * restarted in the directory of its checkpoint continues that directory's
+ * numbering and index; one restarted elsewhere continues the numbering and
+ * indexes its own snapshots only. */
 #ifndef AMSPH_OUTPUT_H
 #define AMSPH_OUTPUT_H
 
 #include "particles.h"
 
+/* The snapshots of a simulation so far. */
+typedef struct {
+    int count;
+    int capacity;
+    double *time;   /* time of each snapshot, s */
+    int *particles; /* particle count of each snapshot */
+} amsph_snapshot_list;
+
+int amsph_snapshot_list_add(amsph_snapshot_list *l, double time, int particles);
+int amsph_snapshot_list_copy(amsph_snapshot_list *dst, const amsph_snapshot_list *src);
+void amsph_snapshot_list_free(amsph_snapshot_list *l);
+
 typedef struct {
     char dir[1024];
     int dim;
     double dx;
-    int count;        /* snapshots written */
-    int capacity;
-    double *times;    /* time of each snapshot */
-    int *particles;   /* particle count of each snapshot */
-    unsigned present; /* bit f: field f is in the snapshots */
+    amsph_snapshot_list list; /* every snapshot of the simulation */
+    int first;                /* the first of them in this directory */
+    unsigned present;         /* bit f: field f is in the snapshots */
 } amsph_output;
 
-/* Creates OUTDIR (and parents) if needed. */
-int amsph_output_open(amsph_output *o, const char *dir, int dim, double dx);
+/* Bad input unless dir can take a new run: it does not exist, is an empty
+ * directory, or force is set (files of the same names are then replaced). */
+int amsph_output_check_dir(const char *dir, int force);
+/* 1 if dir is the directory that holds file (both exist), else 0. */
+int amsph_output_holds(const char *dir, const char *file);
+
+/* Creates OUTDIR (and parents) after amsph_output_check_dir(dir, force). */
+int amsph_output_open(amsph_output *o, const char *dir, int dim, double dx, int force);
+/* Continues after the snapshots of an earlier run of the same simulation:
+ * the next snapshot is number earlier->count; the index lists the earlier
+ * ones too when in_place (this is their directory). */
+int amsph_output_continue(amsph_output *o, const amsph_snapshot_list *earlier, int in_place);
 /* Writes the next snapshot and rewrites the XDMF index. */
 int amsph_output_snapshot(amsph_output *o, const amsph_host_particles *h, double time, long long step);
 void amsph_output_close(amsph_output *o);
+
+/* OUTDIR/name into path (fails if too long). */
+int amsph_output_path(const amsph_output *o, const char *name, char *path, size_t size);
 
 #endif

@@ -1,6 +1,7 @@
 #include "sim.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -61,25 +62,39 @@ static int keep_last_good(amsph_sim *s)
     return amsph_particles_copy_output(&s->last_good, &s->particles);
 }
 
+#define SCALAR_INFO(member)                                                                        \
+    {#member, _Generic(((amsph_sim *)0)->member, long long: 1, double: 0), offsetof(amsph_sim, member)},
+const amsph_sim_scalar amsph_sim_scalars[AMSPH_SIM_SCALAR_COUNT] = {AMSPH_SIM_SCALARS(SCALAR_INFO)};
+#undef SCALAR_INFO
+
+/* The case's particles on the host: the scene, with the fields of the
+ * enabled modules (which also fill their settings in s). */
+static int build_host_particles(amsph_sim *s, amsph_host_particles *host)
+{
+    int status = amsph_scene_build(&s->config, host);
+    if (!status)
+        status = amsph_host_add_field(host, AMSPH_FIELD_ACCELERATION);
+    if (!status && s->config.fluid.enabled)
+        status = amsph_fluid_setup(s, host);
+    if (!status && s->config.thermal.enabled)
+        status = amsph_thermal_setup(s, host);
+    if (!status && s->config.laser.enabled)
+        status = amsph_laser_setup(s, host);
+    return status;
+}
+
 static int build_particles(amsph_sim *s)
 {
     amsph_host_particles host;
-    int status = amsph_scene_build(&s->config, &host);
-    if (!status)
-        status = amsph_host_add_field(&host, AMSPH_FIELD_ACCELERATION);
-    if (!status && s->config.fluid.enabled)
-        status = amsph_fluid_setup(s, &host);
-    if (!status && s->config.thermal.enabled)
-        status = amsph_thermal_setup(s, &host);
-    if (!status && s->config.laser.enabled)
-        status = amsph_laser_setup(s, &host);
+    int status = build_host_particles(s, &host);
     if (!status)
         status = amsph_particles_upload(s->backend, &host, &s->particles);
     amsph_host_free(&host);
     return status;
 }
 
-int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
+/* What every sim has before its particles: settings and built kernels. */
+static int prepare(const amsph_case *c, amsph_backend *b, amsph_sim *s)
 {
     memset(s, 0, sizeof *s);
     s->config = *c;
@@ -88,14 +103,27 @@ int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
     s->support = amsph_support_over_h(c->kernel) * s->h;
     s->dt_limit = "none";
     amsph_build_options build = {.dim = c->dim, .kernel = (int)c->kernel};
-    AMSPH_CHECK(amsph_build(b, &build));
-    AMSPH_CHECK(build_particles(s));
+    return amsph_build(b, &build);
+}
+
+/* The grid and work buffers, once the particles are on the device. */
+static int allocate_device_state(amsph_sim *s)
+{
+    const amsph_case *c = &s->config;
+    amsph_backend *b = s->backend;
     const int capacity = s->particles.capacity;
     AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic,
                                 s->support, capacity));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
-    AMSPH_CHECK(upload_materials(s));
+    return upload_materials(s);
+}
+
+int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
+{
+    AMSPH_CHECK(prepare(c, b, s));
+    AMSPH_CHECK(build_particles(s));
+    AMSPH_CHECK(allocate_device_state(s));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
     if (c->thermal.enabled)
         AMSPH_CHECK(amsph_thermal_start(s));
@@ -119,6 +147,101 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->laser.bin_volume);
     amsph_buffer_free(s->backend, s->laser.bin_power);
     memset(s, 0, sizeof *s);
+}
+
+static unsigned field_set(const amsph_host_particles *h)
+{
+    unsigned set = 0;
+    for (int f = 0; f < AMSPH_FIELD_COUNT; ++f)
+        set |= h->data[f] ? 1u << f : 0u;
+    return set;
+}
+
+/* Bad input naming the first field that one set has and the other lacks. */
+static int compare_field_sets(unsigned saved, unsigned needed)
+{
+    for (int f = 0; f < AMSPH_FIELD_COUNT; ++f) {
+        const unsigned bit = 1u << f;
+        if ((saved ^ needed) & bit)
+            return amsph_bad_input("the saved state's field set differs from the case's: it %s field "
+                                   "'%s', which this case %s in this build",
+                                   saved & bit ? "has" : "lacks", amsph_fields[f].name,
+                                   saved & bit ? "does not use" : "needs");
+    }
+    return 0;
+}
+
+/* Checks st's fields against the case's (building the scene once on the
+ * host, which also fills the modules' settings in s). */
+static int check_saved_fields(amsph_sim *s, const amsph_sim_state *st)
+{
+    amsph_host_particles scene;
+    int status = build_host_particles(s, &scene);
+    if (!status)
+        status = compare_field_sets(field_set(&st->particles), field_set(&scene));
+    amsph_host_free(&scene);
+    return status;
+}
+
+/* Uploads h into buffers that hold `capacity` particles (at least h->n), as
+ * the last good copy must hold every particle the sim may have. */
+static int upload_with_capacity(amsph_backend *b, const amsph_host_particles *h, int capacity,
+                                amsph_particles *p)
+{
+    amsph_host_particles padded = {.n = h->n};
+    int status = 0;
+    for (int f = 0; f < AMSPH_FIELD_COUNT && !status; ++f)
+        if (h->data[f])
+            status = amsph_host_add_field(&padded, (amsph_field_id)f);
+    for (int f = 0; f < AMSPH_FIELD_COUNT && !status; ++f)
+        if (h->data[f])
+            memcpy(padded.data[f], h->data[f], (size_t)h->n * amsph_field_bytes((amsph_field_id)f));
+    if (!status)
+        status = amsph_host_resize(&padded, capacity > h->n ? capacity : h->n);
+    if (!status)
+        status = amsph_particles_upload(b, &padded, p);
+    p->n = h->n;
+    amsph_host_free(&padded);
+    return status;
+}
+
+static void copy_scalars(amsph_sim *s, amsph_scalar_value *v, int to_sim)
+{
+    for (int k = 0; k < AMSPH_SIM_SCALAR_COUNT; ++k) {
+        char *member = (char *)s + amsph_sim_scalars[k].offset;
+        void *value = amsph_sim_scalars[k].integer ? (void *)&v[k].integer : (void *)&v[k].real;
+        const size_t bytes = amsph_sim_scalars[k].integer ? sizeof v[k].integer : sizeof v[k].real;
+        memcpy(to_sim ? member : value, to_sim ? value : member, bytes);
+    }
+}
+
+int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_state *st, amsph_sim *s)
+{
+    AMSPH_CHECK(prepare(c, b, s));
+    AMSPH_CHECK(check_saved_fields(s, st));
+    AMSPH_CHECK(amsph_particles_upload(b, &st->particles, &s->particles));
+    AMSPH_CHECK(allocate_device_state(s));
+    AMSPH_CHECK(upload_with_capacity(b, &st->last_good, s->particles.capacity, &s->last_good));
+    if (c->thermal.enabled)
+        AMSPH_CHECK(amsph_thermal_allocate(s));
+    amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT];
+    memcpy(scalar, st->scalar, sizeof scalar);
+    copy_scalars(s, scalar, 1);
+    return 0;
+}
+
+int amsph_sim_save(amsph_sim *s, amsph_sim_state *st)
+{
+    memset(st, 0, sizeof *st);
+    copy_scalars(s, st->scalar, 0);
+    AMSPH_CHECK(amsph_particles_download(&s->particles, &st->particles));
+    return amsph_particles_download(&s->last_good, &st->last_good);
+}
+
+void amsph_sim_state_free(amsph_sim_state *st)
+{
+    amsph_host_free(&st->particles);
+    amsph_host_free(&st->last_good);
 }
 
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)

@@ -9,6 +9,8 @@
 #ifndef AMSPH_SIM_H
 #define AMSPH_SIM_H
 
+#include <signal.h>
+
 #include "backend.h"
 #include "case.h"
 #include "grid.h"
@@ -77,6 +79,51 @@ typedef struct {
     int guard_failed; /* the last step failed a guard (the error says which) */
 } amsph_sim;
 
+/* The sim's scalar state, which a checkpoint saves and a restart restores:
+ * X(member) for each member of amsph_sim (a double or a long long; nested
+ * members as `a.b`). A module that keeps state outside the particle fields
+ * (an energy ledger, the absorbed laser energy) adds its member here. The
+ * label dt_limit and guard_failed need not be kept: the next step sets the
+ * one, and no checkpoint is written after a guard failed. */
+#define AMSPH_SIM_SCALARS(X)                                                                       \
+    X(time)                                                                                        \
+    X(dt)                                                                                          \
+    X(dt_min)                                                                                      \
+    X(step)                                                                                        \
+    X(last_good_time)                                                                              \
+    X(last_good_step)                                                                              \
+    X(particles.removed)                                                                           \
+    X(last_good.removed)                                                                           \
+    X(ledger.initial)                                                                              \
+    X(ledger.laser)                                                                                \
+    X(ledger.radiation)                                                                            \
+    X(ledger.walls)                                                                                \
+    X(ledger.viscous)
+
+#define AMSPH_SIM_SCALAR_ONE(member) +1
+enum { AMSPH_SIM_SCALAR_COUNT = 0 AMSPH_SIM_SCALARS(AMSPH_SIM_SCALAR_ONE) };
+#undef AMSPH_SIM_SCALAR_ONE
+
+typedef struct {
+    const char *name; /* the member, as written above */
+    int integer;      /* 1: long long, 0: double */
+    size_t offset;    /* in amsph_sim */
+} amsph_sim_scalar;
+
+extern const amsph_sim_scalar amsph_sim_scalars[AMSPH_SIM_SCALAR_COUNT];
+
+typedef union {
+    double real;
+    long long integer;
+} amsph_scalar_value;
+
+/* The sim's state on the host: everything a restart needs besides the case. */
+typedef struct {
+    amsph_host_particles particles; /* every field */
+    amsph_host_particles last_good; /* output fields of the last state that passed the guards */
+    amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT]; /* in amsph_sim_scalars order */
+} amsph_sim_state;
+
 /* Kernel support radius / h: 2 (Wendland C2) or 3 (quintic spline). */
 double amsph_support_over_h(amsph_kernel_type kernel);
 
@@ -84,6 +131,16 @@ double amsph_support_over_h(amsph_kernel_type kernel);
  * dimension and smoothing kernel), sorts it and evaluates the initial rates. */
 int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s);
 void amsph_sim_free(amsph_sim *s);
+
+/* Downloads the state (st is freed by the caller with amsph_sim_state_free,
+ * also on failure). */
+int amsph_sim_save(amsph_sim *s, amsph_sim_state *st);
+/* As amsph_sim_create, but the particles and scalars come from a saved
+ * state of a sim of the same case, which continues exactly where it was:
+ * nothing is re-evaluated. A state whose field set is not the one this case
+ * has in this build is refused as bad input. */
+int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_state *st, amsph_sim *s);
+void amsph_sim_state_free(amsph_sim_state *st);
 
 /* Largest |v| over the particles of a 3-vector field (velocity, acceleration). */
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out);
@@ -93,19 +150,31 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt);
 /* Advances by dt (kick-drift-kick), then checks the guards. */
 int amsph_sim_step(amsph_sim *s, double dt);
 
-/* Steps with the stable dt until exactly `target` (s); each_step (may be
- * NULL) is called after every step. */
-int amsph_sim_advance(amsph_sim *s, double target, void (*each_step)(void *context, const amsph_sim *s),
+/* Steps with the stable dt until exactly `target` (s). each_step (may be
+ * NULL) is called after every step; when it returns non-zero the advance
+ * stops early, with s->time short of target. */
+int amsph_sim_advance(amsph_sim *s, double target, int (*each_step)(void *context, const amsph_sim *s),
                       void *context);
+
+/* Where a restarted run takes up its output (amsph_checkpoint.run). */
+typedef struct amsph_run_record amsph_run_record;
 
 typedef struct {
     const char *outdir;
     int quiet;
+    int force;                  /* write into a directory that holds files */
+    long long max_steps;        /* > 0: stop when s->step reaches it */
+    double checkpoint_interval; /* > 0: a checkpoint every this many wall seconds */
+    const volatile sig_atomic_t *stop; /* non-NULL: stop when *stop becomes non-zero (a signal) */
+    const amsph_run_record *resume; /* non-NULL: the sim was restored from this checkpoint */
+    const char *resume_path;        /* ... read from this file */
 } amsph_run_options;
 
 /* Runs to the case's end time, writing snapshots at t = 0, every output
- * interval and at the end, and reporting progress on stderr. A failed guard
- * writes the last good state as a snapshot before returning the error. */
+ * interval and at the end, a row of OUTDIR/series.csv with each, and
+ * reporting progress on stderr. Stopped early (max_steps, *stop), it writes
+ * a final snapshot and OUTDIR/checkpoint.h5. A failed guard writes the last
+ * good state as a snapshot before returning the error. */
 int amsph_sim_run(amsph_sim *s, const amsph_run_options *options);
 
 #endif

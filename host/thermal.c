@@ -192,7 +192,7 @@ static int alloc_work(amsph_sim *s, amsph_buffer **buffer)
     return amsph_buffer_alloc(s->backend, (size_t)s->particles.capacity * sizeof(amsph_real), buffer);
 }
 
-int amsph_thermal_start(amsph_sim *s)
+int amsph_thermal_allocate(amsph_sim *s)
 {
     amsph_thermal_work *w = &s->thermal_work;
     AMSPH_CHECK(upload_tables(s));
@@ -202,6 +202,12 @@ int amsph_thermal_start(amsph_sim *s)
     AMSPH_CHECK(alloc_work(s, &w->wall_temperature));
     for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k)
         AMSPH_CHECK(alloc_work(s, &w->power[k]));
+    return 0;
+}
+
+int amsph_thermal_start(amsph_sim *s)
+{
+    AMSPH_CHECK(amsph_thermal_allocate(s));
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "enthalpy_from_temperature", n, field(s, AMSPH_FIELD_MATERIAL),
                              field(s, AMSPH_FIELD_TEMPERATURE), amsph_arg_int(n),

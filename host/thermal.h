@@ -9,8 +9,11 @@
 
 /* Adds the module's fields to the host particles. */
 int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h);
-/* On the device, after the first sort: tables, enthalpy from the initial
- * temperature, the initial state and the ledger's starting energy. */
+/* The device tables and scratch buffers (also for a restart, whose state
+ * comes from the checkpoint). */
+int amsph_thermal_allocate(amsph_sim *s);
+/* On the device, after the first sort: amsph_thermal_allocate, enthalpy from
+ * the initial temperature, the initial state and the ledger's starting energy. */
 int amsph_thermal_start(amsph_sim *s);
 void amsph_thermal_free(amsph_sim *s);
 /* Advances the enthalpy over dt (after the drift and sort) and updates

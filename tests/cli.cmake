@@ -41,9 +41,91 @@ expect_text("run CASE.yaml -o OUTDIR")
 expect_status(0 ${AMSPH} devices)
 expect_text("openmp")
 
+set(example ${SOURCE}/cases/examples/falling_block_2d.yaml)
+
+# An output directory that holds files is kept unless --force; one that
+# cannot be created is a run failure that says why.
+expect_status(2 ${AMSPH} run ${example} -o ${WORK}/run --quiet)
+expect_text("already holds files")
+expect_status(0 ${AMSPH} run ${example} -o ${WORK}/run --quiet --force)
+file(WRITE ${WORK}/plain "not a directory")
+expect_status(2 ${AMSPH} run ${example} -o ${WORK}/plain --quiet)
+expect_text("is not a directory")
+expect_status(1 ${AMSPH} run ${example} -o ${WORK}/plain/out --quiet)
+expect_text("cannot create directory")
+
+# Progress: plain lines when stderr is not a terminal, nothing with --quiet,
+# one line updated in place on a terminal (script(1) gives it one).
+expect_status(0 ${AMSPH} run ${example} -o ${WORK}/progress)
+expect_text("particle-steps/s  ETA 0:00:00\n")
+expect_text("amsph: done")
+expect_status(0 ${AMSPH} run ${example} -o ${WORK}/quiet --quiet)
+if(NOT last_output STREQUAL "")
+  message(FATAL_ERROR "--quiet printed:\n${last_output}")
+endif()
+find_program(SCRIPT script)
+if(SCRIPT)
+  expect_status(0 ${SCRIPT} -qec "${AMSPH} run ${example} -o ${WORK}/terminal" /dev/null)
+  string(ASCII 13 cr)
+  string(ASCII 27 esc)
+  expect_text("${cr}t = ")
+  expect_text("ETA 0:00:00${esc}[K\n")
+endif()
+
+# Stop at a step count, restart elsewhere and in place; bad restarts are
+# bad input that says why.
+set(dambreak "dimension: 2\ndomain: {min: [-0.05, -0.05], max: [0.634, 0.45]}\ndx: 0.0146
+end_time: END\noutput_interval: 0.005\ngravity: [0.0, -9.81]
+fluid: {viscosity: artificial, artificial_alpha: 0.1, tensile_correction: 0.1}
+materials:\n  - {name: water, density: 1000, viscosity: 1.0e-3, sound_speed: 25}
+geometry:
+  - {shape: box, kind: wall, material: water, min: [0, 0], max: [0.584, 0.38], layers: 3, open: [+y]}
+  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.146, 0.292], hydrostatic: true}\n")
+string(REPLACE "END" "0.4" text "${dambreak}")
+file(WRITE ${WORK}/dambreak.yaml "${text}")
+set(dambreak_case ${WORK}/dambreak.yaml)
+expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/stop --max-steps 30)
+expect_text("stopped at step 30")
+expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/elsewhere --max-steps 60 --restart ${WORK}/stop/checkpoint.h5 --quiet)
+expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/stop --max-steps 60 --restart ${WORK}/stop/checkpoint.h5 --quiet)
+foreach(f stop/snap_000004.h5 stop/series.csv elsewhere/snap_000004.h5 elsewhere/checkpoint.h5)
+  if(NOT EXISTS ${WORK}/${f})
+    message(FATAL_ERROR "no ${f} after the restarts")
+  endif()
+endforeach()
+expect_status(2 ${AMSPH} run ${dambreak_case} -o ${WORK}/x --max-steps 50 --restart ${WORK}/stop/checkpoint.h5)
+expect_text("is at step 60 already")
+expect_status(2 ${AMSPH} run ${dambreak_case} -o ${WORK}/x --restart ${WORK}/stop/snap_000000.h5)
+expect_text("not an amsph checkpoint")
+expect_status(2 ${AMSPH} run ${example} -o ${WORK}/x --restart ${WORK}/stop/checkpoint.h5)
+expect_text("written for another case")
+expect_status(2 ${AMSPH} run ${dambreak_case} -o ${WORK}/x --restart ${WORK}/nothing.h5)
+expect_text("cannot open the restart file")
+
+# SIGTERM (and SIGINT, the same handler) stops a run with a checkpoint and a
+# final snapshot; the exit status is 128 + the signal number.
+find_program(TIMEOUT timeout)
+if(TIMEOUT)
+  string(REPLACE "END" "1000" text "${dambreak}")
+  file(WRITE ${WORK}/long.yaml "${text}")
+  # --foreground: timeout signals amsph once (else once more through the process group).
+  expect_status(143 ${TIMEOUT} --foreground --preserve-status -s TERM 1 ${AMSPH} run ${WORK}/long.yaml -o ${WORK}/signal)
+  expect_text("stopped by signal 15")
+  if(NOT EXISTS ${WORK}/signal/checkpoint.h5)
+    message(FATAL_ERROR "SIGTERM left no checkpoint")
+  endif()
+endif()
+
+# README.md carries the series.csv column reference that `amsph columns` prints.
+execute_process(COMMAND ${AMSPH} columns OUTPUT_VARIABLE columns RESULT_VARIABLE status)
+file(READ ${SOURCE}/README.md readme)
+string(FIND "${readme}" "${columns}" at)
+if(NOT status EQUAL 0 OR at EQUAL -1)
+  message(FATAL_ERROR "README.md lacks the output of `amsph columns`:\n${columns}")
+endif()
+
 # README.md documents every case-file key that `amsph keys` knows.
 execute_process(COMMAND ${AMSPH} keys OUTPUT_VARIABLE keys RESULT_VARIABLE status)
-file(READ ${SOURCE}/README.md readme)
 string(REPLACE "\n" ";" rows "${keys}")
 foreach(row ${rows})
   if(row MATCHES "^\\| `([^`]+)`")

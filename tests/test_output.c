@@ -1,15 +1,19 @@
-/* Snapshots and the run loop: a block thrown under gravity (no other
- * forces) runs through amsph_sim_run; every snapshot follows the documented
- * schema (datasets, shapes, units, root attributes), lands on the output
- * times, and the positions follow the ballistic solution
- * x = x0 + u0 t + g t^2 / 2, which kick-drift-kick leap-frog integrates
- * exactly for a constant acceleration (so only round-off remains). */
+/* Snapshots, the XDMF index, the series and the run loop: a block thrown
+ * under gravity (no other forces) runs through amsph_sim_run; every snapshot
+ * follows the documented schema (datasets, shapes, units, root attributes),
+ * lands on the output times, and the positions follow the ballistic
+ * solution x = x0 + u0 t + g t^2 / 2, which kick-drift-kick leap-frog
+ * integrates exactly for a constant acceleration (so only round-off
+ * remains). The XDMF index lists every field of every snapshot at its time;
+ * series.csv has the table's columns and one row per snapshot, with the
+ * momentum and kinetic energy of the ballistic solution. */
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <unistd.h>
 
 #include "case.h"
+#include "series.h"
 #include "sim.h"
 #include "testing.h"
 
@@ -107,6 +111,94 @@ static void check_snapshot(const char *dir, int k, const double *x0, const unsig
     H5Fclose(file);
 }
 
+static const char *output_fields[] = {"velocity", "density", "pressure", "mass", "kind",
+                                      "material", "id", "temperature"};
+#define OUTPUT_FIELDS (int)(sizeof output_fields / sizeof output_fields[0])
+
+static void check_xdmf(const char *dir, int snapshots, int n)
+{
+    char path[512], *xdmf = calloc(1, 1 << 20), item[128];
+    snprintf(path, sizeof path, "%s/snapshots.xmf", dir);
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL, "no XDMF index");
+    if (f) {
+        xdmf[fread(xdmf, 1, (1 << 20) - 1, f)] = 0;
+        fclose(f);
+    }
+    CHECK(strstr(xdmf, "CollectionType=\"Temporal\""), "not a temporal collection");
+    for (int k = 0; k < snapshots; ++k) {
+        snprintf(item, sizeof item, "<Time Value=\"%.17g\"/>", fmin(0.3, 0.1 * k)); /* the end time lands exactly */
+        CHECK(strstr(xdmf, item), "XDMF: no %s", item);
+        snprintf(item, sizeof item, "Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"%zu\" "
+                                    "Format=\"HDF\">snap_%06d.h5:/position<", n, sizeof(amsph_real), k);
+        CHECK(strstr(xdmf, item), "XDMF: no geometry %s", item);
+        for (int d = 0; d < OUTPUT_FIELDS; ++d) {
+            snprintf(item, sizeof item, "snap_%06d.h5:/%s<", k, output_fields[d]);
+            CHECK(strstr(xdmf, item), "XDMF: snapshot %d lacks %s", k, output_fields[d]);
+        }
+    }
+    free(xdmf);
+}
+
+/* Splits a CSV line in place; returns the number of cells. */
+static int split(char *line, char **cells, int max)
+{
+    int count = 0;
+    line[strcspn(line, "\n")] = '\0';
+    for (char *p = line; count < max; ++p) {
+        cells[count++] = p;
+        p = strchr(p, ',');
+        if (!p)
+            break;
+        *p = '\0';
+    }
+    return count;
+}
+
+static int column(const char *name)
+{
+    for (int c = 0; c < amsph_series_column_count; ++c)
+        if (!strcmp(amsph_series_columns[c].name, name))
+            return c;
+    CHECK(0, "no series column %s", name);
+    return 0;
+}
+
+static int close_to(const char *cell, double expected)
+{
+    return fabs(atof(cell) - expected) <= 1e-5 * fmax(1.0, fabs(expected));
+}
+
+static void check_series(const char *dir, int snapshots, int n)
+{
+    char path[512], line[4096], *cells[64];
+    snprintf(path, sizeof path, "%s/series.csv", dir);
+    FILE *f = fopen(path, "r");
+    CHECK(f && fgets(line, sizeof line, f), "no series.csv");
+    const int columns = f ? split(line, cells, 64) : 0;
+    CHECK(columns == amsph_series_column_count, "%d columns in the header", columns);
+    for (int c = 0; c < columns && c < amsph_series_column_count; ++c)
+        CHECK(!strcmp(cells[c], amsph_series_columns[c].name), "column %d is %s", c, cells[c]);
+    const double M = n * 7800 * 0.05 * 0.05 * 0.05;
+    int rows = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        CHECK(split(line, cells, 64) == amsph_series_column_count, "row %d: cells", rows);
+        const double t = 0.1 * rows, w = 1.0 - 9.81 * t;
+        CHECK(close_to(cells[column("time")], t) && close_to(cells[column("fluid_particles")], n) &&
+                  close_to(cells[column("total_mass")], M) && close_to(cells[column("max_temperature")], 300),
+              "row %d: time, particles, mass or temperature", rows);
+        CHECK(close_to(cells[column("momentum_x")], 0.5 * M) && close_to(cells[column("momentum_y")], -0.25 * M) &&
+                  close_to(cells[column("momentum_z")], w * M) &&
+                  close_to(cells[column("kinetic_energy")], 0.5 * M * (0.25 + 0.0625 + w * w)),
+              "row %d: momentum or kinetic energy off the ballistic solution", rows);
+        CHECK(cells[column("liquid_mass")][0] == '\0', "row %d: liquid_mass without phase change", rows);
+        ++rows;
+    }
+    CHECK(rows == snapshots, "%d rows for %d snapshots", rows, snapshots);
+    if (f)
+        fclose(f);
+}
+
 int main(void)
 {
     char dir[] = "/tmp/amsph_test_output_XXXXXX";
@@ -131,18 +223,8 @@ int main(void)
     char path[512];
     snprintf(path, sizeof path, "%s/snap_000004.h5", dir);
     CHECK(access(path, F_OK) != 0, "a fifth snapshot exists: output past the end time");
-    snprintf(path, sizeof path, "%s/snapshots.xmf", dir);
-    FILE *xmf = fopen(path, "r");
-    CHECK(xmf != NULL, "no XDMF index");
-    if (xmf) {
-        char buffer[65536];
-        const size_t len = fread(buffer, 1, sizeof buffer - 1, xmf);
-        buffer[len] = '\0';
-        fclose(xmf);
-        CHECK(strstr(buffer, "snap_000003.h5:/position") && strstr(buffer, "Name=\"temperature\"") &&
-                  strstr(buffer, "CollectionType=\"Temporal\""),
-              "XDMF index incomplete");
-    }
+    check_xdmf(dir, 4, n0);
+    check_series(dir, 4, n0);
     free(x0);
     amsph_host_free(&initial);
     amsph_sim_free(&s);

@@ -1,0 +1,441 @@
+/* Checkpoints and restarts. A run stopped at step 100 (--max-steps) and
+ * restarted to step 200 ends bit for bit where a run straight to step 200
+ * ends, field by field in the final snapshot and in every field and scalar
+ * of the checkpoint, on every backend, restarted in the checkpoint's
+ * directory and in another. A bad restart file (missing, not a checkpoint,
+ * truncated, corrupt, other version, other dimension, other case, other
+ * field set) is refused as bad input with a message saying which. A write
+ * that fails for lack of space fails the run with a message and leaves the
+ * last checkpoint intact. A stop request writes a checkpoint and a final
+ * snapshot; checkpoints also come every checkpoint_interval of wall time. */
+#include <hdf5.h>
+#include <signal.h>
+#include <stdio.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "case.h"
+#include "checkpoint.h"
+#include "sim.h"
+#include "testing.h"
+
+/* The 2D dam break at a coarse resolution (about 350 particles), with
+ * temperatures so that every optional field is there; output times fall
+ * between steps 100 and 200. */
+#define DAMBREAK_HEAD                                                                              \
+    "domain: {min: [-0.05, -0.05], max: [0.634, 0.45]}\n"                                          \
+    "dx: 0.0146\n"                                                                                 \
+    "output_interval: 0.005\n"                                                                     \
+    "gravity: [0.0, -9.81]\n"                                                                      \
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1, tensile_correction: 0.1}\n"             \
+    "materials:\n"                                                                                 \
+    "  - {name: water, density: 1000, viscosity: 1.0e-3, sound_speed: 25}\n"                       \
+    "geometry:\n"                                                                                  \
+    "  - {shape: box, kind: wall, material: water, min: [0, 0], max: [0.584, 0.38], layers: 3, "   \
+    "open: [+y], temperature: 300}\n"                                                                              \
+    "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.146, 0.292], "            \
+    "hydrostatic: true, temperature: 300}\n"
+
+static const char *dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_HEAD;
+static const char *dambreak_longer = "dimension: 2\nend_time: 0.5\n" DAMBREAK_HEAD;
+static const char *cube_3d =
+    "dimension: 3\n"
+    "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+    "dx: 0.1\n"
+    "end_time: 1\n"
+    "output_interval: 0.5\n"
+    "materials:\n"
+    "  - {name: water, density: 1000}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0.2, 0.2, 0.2], max: [0.5, 0.5, 0.5]}\n";
+
+static void parse(const char *text, amsph_case *c)
+{
+    char err[512];
+    CHECK(amsph_case_parse(text, strlen(text), "restart.yaml", c, err, sizeof err) == 0, "%s", err);
+}
+
+static void join(char *out, size_t size, const char *dir, const char *name)
+{
+    snprintf(out, size, "%s/%s", dir, name);
+}
+
+/* Runs the case into dir up to max_steps, from the start or from the
+ * checkpoint `restart`. */
+static int run_case(amsph_backend *b, const amsph_case *c, const char *dir, long long max_steps,
+                    const char *restart, const volatile sig_atomic_t *stop)
+{
+    amsph_checkpoint ck = {0};
+    amsph_sim s = {0};
+    int status = 0;
+    if (restart) {
+        status = amsph_checkpoint_read(restart, &ck);
+        if (!status)
+            status = amsph_checkpoint_check_case(&ck, restart, c);
+        if (!status)
+            status = amsph_sim_restore(c, b, &ck.state, &s);
+    } else {
+        status = amsph_sim_create(c, b, &s);
+    }
+    const amsph_run_options options = {.outdir = dir,
+                                       .quiet = 1,
+                                       .max_steps = max_steps,
+                                       .stop = stop,
+                                       .resume = restart ? &ck.run : NULL,
+                                       .resume_path = restart};
+    if (!status)
+        status = amsph_sim_run(&s, &options);
+    amsph_sim_free(&s);
+    amsph_checkpoint_free(&ck);
+    return status;
+}
+
+static long long saved_scalar(const amsph_checkpoint *ck, const char *name)
+{
+    for (int k = 0; k < AMSPH_SIM_SCALAR_COUNT; ++k)
+        if (!strcmp(amsph_sim_scalars[k].name, name))
+            return ck->state.scalar[k].integer;
+    CHECK(0, "no sim scalar named %s", name);
+    return -1;
+}
+
+/* The checkpoint in dir; ck is freed by the caller. */
+static int read_checkpoint(const char *dir, amsph_checkpoint *ck)
+{
+    char path[600];
+    join(path, sizeof path, dir, "checkpoint.h5");
+    const int status = amsph_checkpoint_read(path, ck);
+    CHECK(status == 0, "%s", amsph_last_error());
+    return status;
+}
+
+static int same_fields(const amsph_host_particles *a, const amsph_host_particles *b, const char *what)
+{
+    int same = a->n == b->n;
+    for (int f = 0; f < AMSPH_FIELD_COUNT && same; ++f) {
+        const size_t bytes = (size_t)a->n * amsph_field_bytes((amsph_field_id)f);
+        same = !a->data[f] == !b->data[f] && (!a->data[f] || !memcmp(a->data[f], b->data[f], bytes));
+        CHECK(same, "%s: field %s differs", what, amsph_fields[f].name);
+    }
+    return same;
+}
+
+/* The checkpoints in the two directories hold the same bits. */
+static void check_same_checkpoint(const char *dir_a, const char *dir_b)
+{
+    amsph_checkpoint a = {0}, b = {0};
+    if (!read_checkpoint(dir_a, &a) && !read_checkpoint(dir_b, &b)) {
+        CHECK(same_fields(&a.state.particles, &b.state.particles, dir_b), "particles differ from %s", dir_a);
+        CHECK(same_fields(&a.state.last_good, &b.state.last_good, dir_b), "last good differs from %s", dir_a);
+        CHECK(!memcmp(a.state.scalar, b.state.scalar, sizeof a.state.scalar), "%s: scalars differ", dir_b);
+        CHECK(saved_scalar(&b, "step") == 200, "%s: checkpoint at step %lld", dir_b, saved_scalar(&b, "step"));
+    }
+    amsph_checkpoint_free(&a);
+    amsph_checkpoint_free(&b);
+}
+
+/* The bytes of dataset `name` of an HDF5 file, in its stored type. */
+static char *dataset_bytes(hid_t file, const char *name, size_t *size)
+{
+    hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+    if (set < 0)
+        return NULL;
+    hid_t type = H5Dget_type(set), space = H5Dget_space(set);
+    *size = (size_t)H5Sget_simple_extent_npoints(space) * H5Tget_size(type);
+    char *data = malloc(*size ? *size : 1);
+    H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Dclose(set);
+    return data;
+}
+
+/* The last snapshots of two directories agree field by field. */
+static void check_same_final_snapshot(const char *dir_a, int last_a, const char *dir_b, int last_b)
+{
+    char path_a[600], path_b[600], name[32];
+    snprintf(name, sizeof name, "snap_%06d.h5", last_a);
+    join(path_a, sizeof path_a, dir_a, name);
+    snprintf(name, sizeof name, "snap_%06d.h5", last_b);
+    join(path_b, sizeof path_b, dir_b, name);
+    hid_t a = H5Fopen(path_a, H5F_ACC_RDONLY, H5P_DEFAULT), b = H5Fopen(path_b, H5F_ACC_RDONLY, H5P_DEFAULT);
+    CHECK(a >= 0 && b >= 0, "cannot open %s or %s", path_a, path_b);
+    for (int f = 0; f < AMSPH_FIELD_COUNT && a >= 0 && b >= 0; ++f) {
+        if (!(amsph_fields[f].flags & AMSPH_FIELD_OUTPUT))
+            continue;
+        size_t size_a = 0, size_b = 0;
+        char *x = dataset_bytes(a, amsph_fields[f].name, &size_a);
+        char *y = dataset_bytes(b, amsph_fields[f].name, &size_b);
+        CHECK(!x == !y && (!x || (size_a == size_b && !memcmp(x, y, size_a))), "%s: field %s differs from %s",
+              path_b, amsph_fields[f].name, path_a);
+        free(x);
+        free(y);
+    }
+    if (a >= 0)
+        H5Fclose(a);
+    if (b >= 0)
+        H5Fclose(b);
+}
+
+static int count_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "r");
+    int count = 0;
+    char line[4096];
+    while (f && fgets(line, sizeof line, f))
+        count += strstr(line, text) != NULL;
+    if (f)
+        fclose(f);
+    return count;
+}
+
+/* An empty directory under /tmp (its name in dir). */
+static void make_dir(char *dir, size_t size, const char *tag)
+{
+    snprintf(dir, size, "/tmp/amsph_test_restart_%s_XXXXXX", tag);
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp %s", dir);
+}
+
+static void test_bit_identical(int k)
+{
+    amsph_backend *b = testing_backend(k);
+    if (!b)
+        return;
+    amsph_case c;
+    parse(dambreak, &c);
+    char straight[128], stopped[128], elsewhere[128], from[600];
+    make_dir(straight, sizeof straight, "straight");
+    make_dir(stopped, sizeof stopped, "stopped");
+    make_dir(elsewhere, sizeof elsewhere, "elsewhere");
+    join(from, sizeof from, stopped, "checkpoint.h5");
+    CHECK_OK(run_case(b, &c, straight, 200, NULL, NULL));
+    CHECK_OK(run_case(b, &c, stopped, 100, NULL, NULL));
+    amsph_checkpoint half = {0};
+    if (!read_checkpoint(stopped, &half))
+        CHECK(saved_scalar(&half, "step") == 100, "stopped at step %lld", saved_scalar(&half, "step"));
+    const int before = half.run.snapshots.count;
+    amsph_checkpoint_free(&half);
+    CHECK_OK(run_case(b, &c, elsewhere, 200, from, NULL));
+    CHECK_OK(run_case(b, &c, stopped, 200, from, NULL));
+    check_same_checkpoint(straight, elsewhere);
+    check_same_checkpoint(straight, stopped);
+
+    amsph_checkpoint a = {0}, d = {0};
+    if (!read_checkpoint(straight, &a) && !read_checkpoint(stopped, &d)) {
+        const int last_a = a.run.snapshots.count - 1, last_d = d.run.snapshots.count - 1;
+        check_same_final_snapshot(straight, last_a, elsewhere, last_d);
+        check_same_final_snapshot(straight, last_a, stopped, last_d);
+        CHECK(last_d == last_a + 1, "%d snapshots after the restart, %d straight (one more: the stop)",
+              last_d + 1, last_a + 1);
+        char path[600];
+        join(path, sizeof path, stopped, "snapshots.xmf");
+        CHECK(count_text(path, "<Grid Name=\"snap_") == last_d + 1, "in place: the index lists %d of %d",
+              count_text(path, "<Grid Name=\"snap_"), last_d + 1);
+        join(path, sizeof path, elsewhere, "snapshots.xmf");
+        CHECK(count_text(path, "<Grid Name=\"snap_") == last_d + 1 - before,
+              "elsewhere: the index lists %d snapshots, not the %d written there",
+              count_text(path, "<Grid Name=\"snap_"), last_d + 1 - before);
+        join(path, sizeof path, stopped, "series.csv");
+        CHECK(count_text(path, ",") == last_d + 2, "in place: series.csv has %d lines for %d snapshots",
+              count_text(path, ","), last_d + 1);
+    }
+    amsph_checkpoint_free(&a);
+    amsph_checkpoint_free(&d);
+    amsph_backend_destroy(b);
+}
+
+/* Writes src to dst, cut to `keep` bytes (< 0: all) and with the byte at
+ * `flip` (< 0: none) inverted, or `patch` written at offset `at`. */
+static void copy_altered(const char *src, const char *dst, long keep, long flip, long at, const char *patch)
+{
+    FILE *in = fopen(src, "rb");
+    static char bytes[1 << 22];
+    const size_t n = in ? fread(bytes, 1, sizeof bytes, in) : 0;
+    if (in)
+        fclose(in);
+    CHECK(n > 0 && n < sizeof bytes, "cannot read %s", src);
+    if (flip >= 0)
+        bytes[flip] = (char)~bytes[flip];
+    if (patch)
+        memcpy(bytes + at, patch, strlen(patch));
+    FILE *out = fopen(dst, "wb");
+    CHECK(out != NULL, "cannot write %s", dst);
+    if (out) {
+        fwrite(bytes, 1, keep >= 0 ? (size_t)keep : n, out);
+        fclose(out);
+    }
+}
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) ? -1 : (long)st.st_size;
+}
+
+/* What restoring the case's sim from the checkpoint at path returns. */
+static int restore_status(amsph_backend *b, const char *path, const char *text)
+{
+    amsph_case c;
+    parse(text, &c);
+    amsph_checkpoint ck = {0};
+    amsph_sim s = {0};
+    int status = amsph_checkpoint_read(path, &ck);
+    if (!status)
+        status = amsph_checkpoint_check_case(&ck, path, &c);
+    if (!status)
+        status = amsph_sim_restore(&c, b, &ck.state, &s);
+    amsph_sim_free(&s);
+    amsph_checkpoint_free(&ck);
+    return status;
+}
+
+static void expect_refusal(amsph_backend *b, const char *path, const char *text, const char *words)
+{
+    const int status = restore_status(b, path, text);
+    CHECK(status == AMSPH_BAD_INPUT && strstr(amsph_last_error(), words),
+          "expected a refusal saying '%s', got status %d: %s", words, status, amsph_last_error());
+}
+
+/* The checkpoint of `good` without the field `shepard`, written to path. */
+static void write_without_shepard(const char *good, const char *path)
+{
+    amsph_checkpoint ck = {0};
+    CHECK_OK(amsph_checkpoint_read(good, &ck));
+    free(ck.state.particles.data[AMSPH_FIELD_SHEPARD]);
+    ck.state.particles.data[AMSPH_FIELD_SHEPARD] = NULL;
+    CHECK_OK(amsph_checkpoint_write(path, &ck));
+    amsph_checkpoint_free(&ck);
+}
+
+static void test_refusals(amsph_backend *b, const char *dir)
+{
+    char good[600], bad[600], snapshot[600];
+    join(good, sizeof good, dir, "checkpoint.h5");
+    join(bad, sizeof bad, dir, "bad.h5");
+    join(snapshot, sizeof snapshot, dir, "snap_000000.h5");
+    const long size = file_size(good);
+    CHECK(restore_status(b, good, dambreak) == 0, "the good checkpoint was refused: %s", amsph_last_error());
+    expect_refusal(b, "/nonexistent/checkpoint.h5", dambreak, "cannot open");
+    expect_refusal(b, snapshot, dambreak, "not an amsph checkpoint");
+    copy_altered(good, bad, size - 1000, -1, 0, NULL);
+    expect_refusal(b, bad, dambreak, "truncated");
+    copy_altered(good, bad, -1, size / 2, 0, NULL);
+    expect_refusal(b, bad, dambreak, "corrupt");
+    copy_altered(good, bad, -1, -1, size - 64 + (long)strlen("amsph checkpoint "), "7");
+    expect_refusal(b, bad, dambreak, "format version 7");
+    expect_refusal(b, good, cube_3d, "is a 2D checkpoint; the case restart.yaml is 3D");
+    expect_refusal(b, good, dambreak_longer, "written for another case");
+    write_without_shepard(good, bad);
+    expect_refusal(b, bad, dambreak, "lacks field 'shepard'");
+}
+
+/* Sets the soft limit on the size of files this process writes. */
+static void limit_file_size(rlim_t bytes)
+{
+    struct rlimit limit;
+    getrlimit(RLIMIT_FSIZE, &limit);
+    limit.rlim_cur = bytes;
+    CHECK(setrlimit(RLIMIT_FSIZE, &limit) == 0, "setrlimit");
+}
+
+static int same_file(const char *a, const char *b)
+{
+    FILE *x = fopen(a, "rb"), *y = fopen(b, "rb");
+    int same = x && y;
+    while (same) {
+        const int cx = fgetc(x), cy = fgetc(y);
+        same = cx == cy;
+        if (cx == EOF)
+            break;
+    }
+    if (x)
+        fclose(x);
+    if (y)
+        fclose(y);
+    return same;
+}
+
+/* A full disk (a file size limit here): the write fails with a message, the
+ * run stops, and the last checkpoint is the one that was there. */
+static void test_full_disk(amsph_backend *b, const char *dir)
+{
+    amsph_case c;
+    parse(dambreak, &c);
+    char path[600], copy[600], tmp[610];
+    join(path, sizeof path, dir, "checkpoint.h5");
+    join(copy, sizeof copy, dir, "copy.h5");
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    copy_altered(path, copy, -1, -1, 0, NULL);
+    amsph_checkpoint ck = {0};
+    CHECK_OK(amsph_checkpoint_read(path, &ck));
+    signal(SIGXFSZ, SIG_IGN);
+    limit_file_size(4096);
+    const int status = amsph_checkpoint_write(path, &ck);
+    char message[1024];
+    snprintf(message, sizeof message, "%s", amsph_last_error());
+    const int run_status = run_case(b, &c, dir, 200, path, NULL);
+    limit_file_size(RLIM_INFINITY);
+    CHECK(status == AMSPH_FAILED && strstr(message, "cannot write") && strstr(message, "checkpoint.h5") &&
+              strstr(message, "File too large"),
+          "a checkpoint write past the limit: status %d, message '%s'", status, message);
+    CHECK(run_status == AMSPH_FAILED && strstr(amsph_last_error(), "cannot write") && strstr(amsph_last_error(), dir),
+          "a run that cannot write: status %d, message '%s'", run_status, amsph_last_error());
+    CHECK(same_file(path, copy), "the last checkpoint changed");
+    CHECK(access(tmp, F_OK) != 0, "%s left behind", tmp);
+    amsph_checkpoint_free(&ck);
+}
+
+/* A stop request (what SIGINT and SIGTERM set) before the first step: a
+ * final snapshot and a checkpoint at step 0. */
+static void test_stop_request(amsph_backend *b)
+{
+    amsph_case c;
+    parse(dambreak, &c);
+    char dir[128];
+    make_dir(dir, sizeof dir, "stop");
+    static volatile sig_atomic_t stop = SIGTERM;
+    CHECK_OK(run_case(b, &c, dir, 0, NULL, &stop));
+    amsph_checkpoint ck = {0};
+    if (!read_checkpoint(dir, &ck))
+        CHECK(saved_scalar(&ck, "step") == 0 && ck.run.snapshots.count == 1,
+              "stopped at step %lld with %d snapshots", saved_scalar(&ck, "step"), ck.run.snapshots.count);
+    amsph_checkpoint_free(&ck);
+}
+
+/* A checkpoint every (tiny) interval of wall time, without a stop. */
+static void test_periodic_checkpoint(amsph_backend *b)
+{
+    amsph_case c;
+    parse(cube_3d, &c);
+    char dir[128];
+    make_dir(dir, sizeof dir, "periodic");
+    amsph_sim s;
+    const amsph_run_options options = {.outdir = dir, .quiet = 1, .checkpoint_interval = 1e-9};
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_run(&s, &options));
+    amsph_checkpoint ck = {0};
+    if (!read_checkpoint(dir, &ck))
+        CHECK(saved_scalar(&ck, "step") == s.step, "the last checkpoint is at step %lld, the run ended at %lld",
+              saved_scalar(&ck, "step"), s.step);
+    amsph_checkpoint_free(&ck);
+    amsph_sim_free(&s);
+}
+
+int main(void)
+{
+    for (int k = 0; k < TESTING_BACKENDS; ++k)
+        test_bit_identical(k);
+    amsph_backend *b = testing_backend(0);
+    amsph_case c;
+    parse(dambreak, &c);
+    char dir[128];
+    make_dir(dir, sizeof dir, "refusals");
+    CHECK_OK(run_case(b, &c, dir, 20, NULL, NULL));
+    test_refusals(b, dir);
+    test_full_disk(b, dir);
+    test_stop_request(b);
+    test_periodic_checkpoint(b);
+    amsph_backend_destroy(b);
+    return testing_finish();
+}
