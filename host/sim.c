@@ -278,7 +278,7 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
         amsph_thermal_dt(s, dt, &s->dt_limit);
     if (s->dt_min == 0.0 && isfinite(*dt))
         s->dt_min = s->config.fluid.dt_min > 0.0 ? s->config.fluid.dt_min : 1e-6 * *dt;
-    if (*dt < s->dt_min)
+    if (*dt < s->dt_min || !(*dt > 0.0))
         return amsph_fail("step %lld, t = %.6g s: the time step %.3g s (%s limit) fell below "
                           "dt_min = %.3g s; the flow is blowing up or dt_min is too large",
                           s->step, s->time, *dt, s->dt_limit, s->dt_min);

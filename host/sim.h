@@ -64,6 +64,7 @@ typedef struct {
     amsph_thermal_work thermal_work;
     amsph_energy_ledger ledger;
     int thermal_iterations; /* of the last step (midpoint: fixed-point iterations) */
+    double thermal_dt;      /* the diffusion limit, s (fixed for the run) */
     amsph_laser_state laser;
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */

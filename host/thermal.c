@@ -192,10 +192,33 @@ static int alloc_work(amsph_sim *s, amsph_buffer **buffer)
     return amsph_buffer_alloc(s->backend, (size_t)s->particles.capacity * sizeof(amsph_real), buffer);
 }
 
+/* The diffusion limit diffusion_number rho c h^2 / k over the materials,
+ * with the smallest apparent heat capacity and the largest conductivity of
+ * each material's table (fixed for the run). */
+static double diffusion_limit(const amsph_sim *s)
+{
+    const amsph_case *c = &s->config;
+    double limit = INFINITY;
+    for (int m = 0; m < c->n_materials; ++m) {
+        double t[THERMAL_NODES], h[THERMAL_NODES], k[THERMAL_NODES];
+        const int count = amsph_thermal_nodes(&c->materials[m], t, h, k);
+        double c_min = INFINITY, k_max = 0.0;
+        for (int i = 0; i < count; ++i) {
+            k_max = fmax(k_max, k[i]);
+            if (i > 0)
+                c_min = fmin(c_min, (h[i] - h[i - 1]) / (t[i] - t[i - 1]));
+        }
+        if (k_max > 0.0)
+            limit = fmin(limit, c->thermal.diffusion_number * c->materials[m].density * c_min * s->h * s->h / k_max);
+    }
+    return limit;
+}
+
 int amsph_thermal_allocate(amsph_sim *s)
 {
     amsph_thermal_work *w = &s->thermal_work;
     AMSPH_CHECK(upload_tables(s));
+    s->thermal_dt = diffusion_limit(s);
     AMSPH_CHECK(alloc_work(s, &w->enthalpy_start));
     AMSPH_CHECK(alloc_work(s, &w->rate_start));
     AMSPH_CHECK(alloc_work(s, &w->temperature_previous));
@@ -256,8 +279,14 @@ static int heat_rate(amsph_sim *s, amsph_buffer *rate, double power[AMSPH_LEDGER
         amsph_arg_buffer(s->materials), amsph_arg_buffer(s->thermal_table), params, amsph_arg_buffer(rate),
         amsph_arg_buffer(w->power[AMSPH_LEDGER_LASER]), amsph_arg_buffer(w->power[AMSPH_LEDGER_RADIATION]),
         amsph_arg_buffer(w->power[AMSPH_LEDGER_WALLS]), amsph_arg_buffer(w->power[AMSPH_LEDGER_VISCOUS])));
-    for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k)
-        AMSPH_CHECK(amsph_reduce_sum(s->backend, w->power[k], p->n, &power[k]));
+    const int present[AMSPH_LEDGER_TERMS] = {
+        [AMSPH_LEDGER_LASER] = s->config.laser.enabled, [AMSPH_LEDGER_RADIATION] = s->thermal.radiation,
+        [AMSPH_LEDGER_WALLS] = 1, [AMSPH_LEDGER_VISCOUS] = s->thermal.viscous_heating};
+    for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k) {
+        power[k] = 0.0;
+        if (present[k])
+            AMSPH_CHECK(amsph_reduce_sum(s->backend, w->power[k], p->n, &power[k]));
+    }
     return 0;
 }
 
@@ -350,21 +379,9 @@ int amsph_thermal_advance(amsph_sim *s, double dt)
 
 void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit)
 {
-    const amsph_case *c = &s->config;
-    for (int m = 0; m < c->n_materials; ++m) {
-        double t[THERMAL_NODES], h[THERMAL_NODES], k[THERMAL_NODES];
-        const int count = amsph_thermal_nodes(&c->materials[m], t, h, k);
-        double c_min = INFINITY, k_max = 0.0;
-        for (int i = 0; i < count; ++i) {
-            k_max = fmax(k_max, k[i]);
-            if (i > 0)
-                c_min = fmin(c_min, (h[i] - h[i - 1]) / (t[i] - t[i - 1]));
-        }
-        const double candidate = c->thermal.diffusion_number * c->materials[m].density * c_min * s->h * s->h / k_max;
-        if (k_max > 0.0 && candidate < *dt) {
-            *dt = candidate;
-            *limit = "diffusion";
-        }
+    if (s->thermal_dt < *dt) {
+        *dt = s->thermal_dt;
+        *limit = "diffusion";
     }
 }
 

@@ -48,36 +48,34 @@ static inline int thermal_count(GLOBAL const real *t)
     return (int)t[THERMAL_COUNT];
 }
 
-/* T(h): the inverse of the enthalpy table, extended linearly beyond it. */
+/* y(v) on the nodes (x_i, y_i), x increasing: linear between nodes and
+ * extended linearly beyond the ends. */
+static inline real table_interpolate(GLOBAL const real *x, GLOBAL const real *y, int count, real v)
+{
+    const int i = thermal_segment(x, count, v);
+    return y[i] + (v - x[i]) * (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+}
+
+/* T(h): the inverse of the enthalpy table. */
 static inline real temperature_of_enthalpy(GLOBAL const real *table, int material, real h)
 {
     GLOBAL const real *t = thermal_material(table, material);
-    GLOBAL const real *temperature = t + THERMAL_TEMPERATURE, *enthalpy = t + THERMAL_ENTHALPY;
-    const int i = thermal_segment(enthalpy, thermal_count(t), h);
-    return temperature[i] + (h - enthalpy[i]) * (temperature[i + 1] - temperature[i]) /
-                                (enthalpy[i + 1] - enthalpy[i]);
+    return table_interpolate(t + THERMAL_ENTHALPY, t + THERMAL_TEMPERATURE, thermal_count(t), h);
 }
 
-/* h(T), linear between nodes and beyond the last. */
 static inline real enthalpy_of_temperature(GLOBAL const real *table, int material, real temp)
 {
     GLOBAL const real *t = thermal_material(table, material);
-    GLOBAL const real *temperature = t + THERMAL_TEMPERATURE, *enthalpy = t + THERMAL_ENTHALPY;
-    const int i = thermal_segment(temperature, thermal_count(t), temp);
-    return enthalpy[i] + (temp - temperature[i]) * (enthalpy[i + 1] - enthalpy[i]) /
-                             (temperature[i + 1] - temperature[i]);
+    return table_interpolate(t + THERMAL_TEMPERATURE, t + THERMAL_ENTHALPY, thermal_count(t), temp);
 }
 
-/* k(T), linear between nodes, constant beyond the last. */
+/* k(T), constant beyond the last node. */
 static inline real conductivity_of_temperature(GLOBAL const real *table, int material, real temp)
 {
     GLOBAL const real *t = thermal_material(table, material);
-    GLOBAL const real *temperature = t + THERMAL_TEMPERATURE, *k = t + THERMAL_CONDUCTIVITY;
+    GLOBAL const real *temperature = t + THERMAL_TEMPERATURE;
     const int count = thermal_count(t);
-    if (temp >= temperature[count - 1])
-        return k[count - 1];
-    const int i = thermal_segment(temperature, count, temp);
-    return k[i] + (temp - temperature[i]) * (k[i + 1] - k[i]) / (temperature[i + 1] - temperature[i]);
+    return table_interpolate(temperature, t + THERMAL_CONDUCTIVITY, count, fmin(temp, temperature[count - 1]));
 }
 
 static inline int material_melts(GLOBAL const real *table, int material)

@@ -365,8 +365,8 @@ static void test_phase_rule(void)
 }
 
 /* Viscous heating in the steady Couette flow u = V y / L: the
- * dissipation is mu (V / L)^2 per volume (Russell Eq. 3.44 must give it
- * in the interior, away from the walls). */
+ * dissipation is mu (V / L)^2 per volume, in the interior away from the
+ * walls. */
 static void test_viscous_heating(void)
 {
     amsph_case c;
@@ -454,6 +454,55 @@ static void test_laser_slab(void)
     amsph_backend_destroy(b);
 }
 
+/* The mushy zone's viscosity reaches the fluid forces: the Couette case at
+ * liquid fraction 1/2 with mushy_viscosity = 3 mu flows with 2 mu, so at
+ * t = 0.25 s its profile is the series solution (Morris et al. 1997 Eq. 22)
+ * of the plain fluid at 2 nu t = 0.5 nu s. */
+static void test_mushy_viscosity(void)
+{
+    amsph_case c;
+    if (testing_load_case("couette_2d.yaml", &c))
+        return;
+    const double V = 2.5e-5, L = 1e-3, nu = 1e-6, t = 0.25;
+    amsph_material *m = &c.materials[0];
+    c.thermal.enabled = 1;
+    c.thermal.diffusion_number = 0.1; /* the parser's default */
+    m->specific_heat = m->liquid_specific_heat = (amsph_property){.n = 1, .v = {4000}};
+    m->conductivity = m->liquid_conductivity = (amsph_property){.n = 1, .v = {1e-9}};
+    m->melting_temperature = 100.0;
+    m->melting_range = 10.0;
+    m->mushy_viscosity = 3.0 * m->viscosity;
+    for (int k = 0; k < c.n_geometry; ++k) {
+        c.geometry[k].has_temperature = 1;
+        c.geometry[k].temperature = 100.0; /* liquid fraction 1/2 */
+    }
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    amsph_host_particles h;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_advance(&s, t, NULL, NULL));
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    double sum2 = 0.0;
+    int count = 0;
+    for (int i = 0; i < h.n; ++i) {
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] != AMSPH_KIND_FLUID)
+            continue;
+        const double y = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + 1];
+        double u = V * y / L;
+        for (int n = 1; n < 400; ++n)
+            u += 2.0 * V * (n % 2 ? -1.0 : 1.0) / (n * PI) * sin(n * PI * y / L) *
+                 exp(-n * n * PI * PI * 2.0 * nu * t / (L * L));
+        const double e = amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i] - u;
+        sum2 += e * e;
+        ++count;
+    }
+    const double error = count ? sqrt(sum2 / count) / V : INFINITY;
+    CHECK(error < 0.01, "Couette at liquid fraction 1/2: L2 error %.3g of V against the flow with 2 mu", error);
+    amsph_host_free(&h);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 /* Both backends give the same temperatures on the coarse square. */
 static void test_backends_agree(void)
 {
@@ -498,6 +547,7 @@ int main(void)
     test_radiation();
     test_phase_rule();
     test_viscous_heating();
+    test_mushy_viscosity();
     test_laser_slab();
     test_backends_agree();
     return testing_finish();
