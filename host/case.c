@@ -50,6 +50,7 @@ typedef enum {
     SEC_DOMAIN,
     SEC_FLUID,
     SEC_THERMAL,
+    SEC_SURFACE,
     SEC_LASER,
     SEC_LASER_PATH,
     SEC_MATERIAL,
@@ -57,8 +58,9 @@ typedef enum {
 } section_id;
 
 /* How each section is named in the key reference. */
-static const char *const section_prefix[] = {"",       "domain.",       "fluid.",       "thermal.",
-                                             "laser.", "laser.path[].", "materials[].", "geometry[]."};
+static const char *const section_prefix[] = {"",         "domain.", "fluid.",        "thermal.",
+                                             "surface.", "laser.",  "laser.path[].", "materials[].",
+                                             "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -160,6 +162,7 @@ typedef struct {
 #define CASE(field) offsetof(amsph_case, field)
 #define FLUID(field) offsetof(amsph_case, fluid.field)
 #define THERMAL(field) offsetof(amsph_case, thermal.field)
+#define SURFACE(field) offsetof(amsph_case, surface.field)
 #define LASER(field) offsetof(amsph_case, laser.field)
 #define SEGMENT(field) offsetof(amsph_laser_segment, field)
 #define MAT(field) offsetof(amsph_material, field)
@@ -243,6 +246,12 @@ static const key_spec specs[] = {
     {.section = SEC_FLUID, .key = "max_density_error", .type = VT_NUMBER, .flags = F_ABOVE_LO,
      .lo = 0, .def = 0.1, .offset = FLUID(max_density_error),
      .doc = "Guard: |rho - rho0| / rho0 above this stops the run"},
+    {.section = SEC_FLUID, .key = "damping_rate", .type = VT_NUMBER, .unit = "1/s",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = FLUID(damping_rate),
+     .doc = "Relaxation to rest: fluid velocities decay as exp(-rate t) until `damping_end`"},
+    {.section = SEC_FLUID, .key = "damping_end", .type = VT_NUMBER, .unit = "s",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = FLUID(damping_end),
+     .doc = "Time the relaxation damping stops"},
     {.section = SEC_TOP, .key = "thermal", .type = VT_MAP, .sub = SEC_THERMAL,
      .doc = "Heat transfer and phase change module; present: on"},
     {.section = SEC_THERMAL, .key = "integration", .type = VT_CHOICE,
@@ -268,6 +277,30 @@ static const key_spec specs[] = {
     {.section = SEC_THERMAL, .key = "viscous_heating", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = THERMAL(viscous_heating), .rule = "needs `fluid`",
      .doc = "Viscous dissipation tau : grad u heats the fluid (renormalised velocity gradient)"},
+    {.section = SEC_TOP, .key = "surface", .type = VT_MAP, .sub = SEC_SURFACE,
+     .rule = "needs `fluid`",
+     .doc = "Surface tension and Marangoni force on free surfaces (Russell 2018 §3.1.2); present: on"},
+    {.section = SEC_SURFACE, .key = "tension", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 1, .offset = SURFACE(tension),
+     .doc = "The curvature force -σ κ n (Russell Eq. 3.31)"},
+    {.section = SEC_SURFACE, .key = "marangoni", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = SURFACE(marangoni), .rule = "needs temperatures",
+     .doc = "The Marangoni force dσ/dT ∇_s T |n| (Russell Eq. 3.35)"},
+    {.section = SEC_SURFACE, .key = "h_over_dx", .type = VT_NUMBER,
+     .flags = F_ABOVE_LO | F_UP_TO_HI | F_NO_DEFAULT, .lo = 0, .hi = 4,
+     .offset = SURFACE(h_over_dx), .rule = ">= `h_over_dx`",
+     .doc = "Smoothing length of the surface terms / dx; not set: a support of 3.6 dx (Russell's "
+            "1.5 × 1.2 dx with Wendland C2, §3.1.2; 1.2 dx with the quintic), at least `h_over_dx`"},
+    {.section = SEC_SURFACE, .key = "normal_cutoff", .type = VT_NUMBER,
+     .flags = F_ABOVE_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0.1,
+     .offset = SURFACE(normal_cutoff),
+     .doc = "Cut-off of the normals (Russell Eq. 3.27): a normal n enters the curvature with "
+            "weight 0 at |n| h = this, rising linearly to 1 at twice this"},
+    {.section = SEC_SURFACE, .key = "min_shepard", .type = VT_NUMBER,
+     .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0.2,
+     .offset = SURFACE(min_shepard),
+     .doc = "Particles whose kernel sum Σ V W (at the surface smoothing length) is below this "
+            "(lone particles, films a particle thick) carry no surface force"},
     {.section = SEC_TOP, .key = "laser", .type = VT_MAP, .sub = SEC_LASER,
      .doc = "Laser heat source: a Gaussian beam (Russell 2018 Eq. 3.42) absorbed into the particles' "
             "`laser_power`; present: on. In 2D the plane is a slice through the beam axis, so "
@@ -367,6 +400,33 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "emissivity", .type = VT_NUMBER,
      .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0, .offset = MAT(emissivity),
      .doc = "Emissivity of free surfaces (with `thermal.radiation`)"},
+    {.section = SEC_MATERIAL, .key = "surface_tension", .type = VT_NUMBER, .unit = "N/m",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(surface_tension),
+     .doc = "Surface tension σ0 at `surface_tension_reference_temperature` (with `surface`)"},
+    {.section = SEC_MATERIAL, .key = "surface_tension_slope", .type = VT_NUMBER, .unit = "N/(m·K)",
+     .def = 0, .offset = MAT(surface_tension_slope), .rule = "nonzero: needs temperatures",
+     .doc = "dσ/dT of the clean surface: σ = σ0 + slope (T - T_ref) (Sahoo: -A)"},
+    {.section = SEC_MATERIAL, .key = "surface_tension_reference_temperature", .type = VT_NUMBER,
+     .unit = "K", .flags = F_FROM_LO, .lo = 0, .def = 0,
+     .offset = MAT(surface_tension_reference_temperature),
+     .doc = "Temperature T_ref at which σ = σ0 (Sahoo: the melting temperature)"},
+    {.section = SEC_MATERIAL, .key = "surface_tension_minimum", .type = VT_NUMBER, .unit = "N/m",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(surface_tension_minimum),
+     .doc = "σ(T) is held at no less than this (Fuchs et al. α_min)"},
+    {.section = SEC_MATERIAL, .key = "surfactant_excess", .type = VT_NUMBER, .unit = "mol/m²",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(surfactant_excess),
+     .rule = "> 0 needs the other `surfactant_` keys and temperatures",
+     .doc = "Surface excess at saturation Γ_s of Sahoo's adsorption term -R T Γ_s ln(1 + k_l a_s "
+            "exp(-ΔH0/(R T))) (Russell Eq. 4.2); 0: no term"},
+    {.section = SEC_MATERIAL, .key = "surfactant_segregation", .type = VT_NUMBER,
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(surfactant_segregation),
+     .doc = "Segregation entropy factor k_l of the adsorption term"},
+    {.section = SEC_MATERIAL, .key = "surfactant_activity", .type = VT_NUMBER,
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(surfactant_activity),
+     .doc = "Activity a_s of the surface-active solute (wt%, as Sahoo et al.)"},
+    {.section = SEC_MATERIAL, .key = "surfactant_enthalpy", .type = VT_NUMBER, .unit = "J/mol",
+     .def = 0, .offset = MAT(surfactant_enthalpy),
+     .doc = "Standard heat of adsorption ΔH0 of the adsorption term"},
     {.section = SEC_TOP, .key = "geometry", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
      .doc = "Bodies filled with particles"},
@@ -424,6 +484,7 @@ typedef struct {
     amsph_case *c;
     size_t material_line[AMSPH_MAX_MATERIALS]; /* where each material's name is */
     size_t thermal_line;                       /* where the thermal section starts */
+    size_t surface_line;                       /* where the surface section starts */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -1195,10 +1256,64 @@ static int finish_thermal(parser *p)
     return 0;
 }
 
+static int has_temperatures(const amsph_case *c)
+{
+    for (int k = 0; k < c->n_geometry; k++)
+        if (!c->geometry[k].has_temperature)
+            return 0;
+    return 1;
+}
+
+/* A material's sigma(T): a surfactant term needs all its constants; a
+ * temperature-dependent law needs temperatures. */
+static int check_surface_tension(parser *p, int i)
+{
+    const amsph_case *c = p->c;
+    const amsph_material *m = &c->materials[i];
+    const int surfactant = m->surfactant_excess > 0;
+    if (surfactant && !(m->surfactant_segregation > 0 && m->surfactant_activity > 0))
+        return fail(p, p->material_line[i],
+                    "material '%s': 'surfactant_excess' needs 'surfactant_segregation' and "
+                    "'surfactant_activity' > 0 (and 'surfactant_enthalpy')",
+                    m->name);
+    if ((surfactant || m->surface_tension_slope != 0) && !has_temperatures(c))
+        return fail(p, p->material_line[i],
+                    "material '%s': a temperature-dependent surface tension needs temperatures: "
+                    "give every geometry block a 'temperature'",
+                    m->name);
+    return 0;
+}
+
+/* The surface module works on the fluid module's free surfaces; Marangoni
+ * flow needs temperatures; the surface terms' smoothing length is at least
+ * the fluid's. */
+static int finish_surface(parser *p)
+{
+    amsph_case *c = p->c;
+    amsph_surface_settings *st = &c->surface;
+    if (!c->fluid.enabled)
+        return fail(p, p->surface_line, "'surface' needs the fluid module (a 'fluid:' section)");
+    if (st->marangoni && !has_temperatures(c))
+        return fail(p, p->surface_line,
+                    "'surface.marangoni' needs temperatures: give every geometry block a "
+                    "'temperature' (or add the thermal module)");
+    if (st->h_over_dx == 0)
+        st->h_over_dx = fmax(c->h_over_dx, (c->kernel == AMSPH_KERNEL_QUINTIC ? 1.2 : 1.8));
+    else if (st->h_over_dx < c->h_over_dx)
+        return fail(p, p->surface_line, "'surface.h_over_dx' (%g) must be at least 'h_over_dx' (%g)",
+                    st->h_over_dx, c->h_over_dx);
+    for (int i = 0; i < c->n_materials; i++)
+        if (check_surface_tension(p, i))
+            return CASE_ERROR;
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
     if (p->c->thermal.enabled && finish_thermal(p))
+        return CASE_ERROR;
+    if (p->c->surface.enabled && finish_surface(p))
         return CASE_ERROR;
     if (!p->c->fluid.enabled)
         return 0;
@@ -1290,6 +1405,10 @@ static int finish_scope(parser *p, const scope *sc)
     case SEC_THERMAL:
         p->c->thermal.enabled = 1;
         p->thermal_line = line_of(sc->map);
+        return 0;
+    case SEC_SURFACE:
+        p->c->surface.enabled = 1;
+        p->surface_line = line_of(sc->map);
         return 0;
     case SEC_LASER:
         return finish_laser(p, sc);

@@ -59,6 +59,16 @@ typedef struct {
     double latent_heat;         /* J/kg, >= 0 */
     double mushy_viscosity;     /* viscosity at the solidus (liquid fraction 0), Pa s */
     double emissivity;          /* in [0, 1], default 0 */
+    /* surface module: sigma(T) = sigma0 + slope (T - T_ref) - R T Gamma_s ln(1 + k_l a_s
+     * exp(-dH0/(R T))), at least sigma_min (kernels/surface.cl); all default 0 */
+    double surface_tension;                       /* sigma0, N/m */
+    double surface_tension_slope;                 /* d sigma/dT of the clean surface, N/(m K) */
+    double surface_tension_reference_temperature; /* T_ref, K */
+    double surface_tension_minimum;               /* sigma_min, N/m */
+    double surfactant_excess;                     /* Gamma_s, mol/m^2 */
+    double surfactant_segregation;                /* k_l */
+    double surfactant_activity;                   /* a_s */
+    double surfactant_enthalpy;                   /* dH0, J/mol */
 } amsph_material;
 
 /* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at
@@ -101,6 +111,8 @@ typedef struct {
     double dt_min;              /* s: a step below it stops the run; default 0: 1e-6 of the first step */
     double min_pair_distance;   /* guard: nearest pair below this fraction of dx stops the run, default 0.3 */
     double max_density_error;   /* guard: |rho - rho0| / rho0 above this stops the run, default 0.1 */
+    double damping_rate;        /* relaxation: u *= exp(-rate dt) each step, 1/s, default 0 */
+    double damping_end;         /* ... while t < damping_end, s, default 0 */
 } amsph_fluid_settings;
 
 /* The thermal module (enthalpy, conduction, phase change, radiation); on
@@ -117,6 +129,17 @@ typedef struct {
     double ambient_temperature; /* T_inf of the radiation, K, default 300 */
     int viscous_heating;        /* 1: tau : grad u heats the fluid (kernels/thermal.cl), default 0 */
 } amsph_thermal_settings;
+/* The surface module (surface tension and Marangoni force on free
+ * surfaces, kernels/surface.cl); on when the case has a `surface:` section. */
+typedef struct {
+    int enabled;
+    int tension;          /* 1: the normal (curvature) force, default 1 */
+    int marangoni;        /* 1: the Marangoni force, default 0 */
+    double h_over_dx;     /* smoothing length of the surface terms / dx, default: support 3.6 dx */
+    double normal_cutoff; /* a normal counts where |n| h >= this, default 0.1 */
+    double min_shepard;   /* particles with a Shepard sum below this carry no surface force */
+} amsph_surface_settings;
+
 typedef enum { AMSPH_ABSORPTION_VOLUMETRIC = 0, AMSPH_ABSORPTION_SURFACE = 1 } amsph_absorption;
 
 /* One leg of the beam's path: from the previous point straight to `to`. */
@@ -163,6 +186,7 @@ typedef struct {
     double gravity[3];    /* m/s^2, default 0 */
     amsph_fluid_settings fluid;
     amsph_thermal_settings thermal;
+    amsph_surface_settings surface;
     amsph_laser_settings laser;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];

@@ -34,7 +34,14 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(ENTHALPY_RATE, "enthalpy_rate", AMSPH_TYPE_REAL, 1, "W/kg", 0)                               \
     X(CONDUCTIVITY, "conductivity", AMSPH_TYPE_REAL, 1, "W/(m K)", 0)                              \
     X(PEAK_TEMPERATURE, "peak_temperature", AMSPH_TYPE_REAL, 1, "K", AMSPH_FIELD_OUTPUT)           \
-    X(LASER_POWER, "laser_power", AMSPH_TYPE_REAL, 1, "W/m^3", AMSPH_FIELD_OUTPUT)
+    X(LASER_POWER, "laser_power", AMSPH_TYPE_REAL, 1, "W/m^3", AMSPH_FIELD_OUTPUT)                \
+    X(SURFACE_SHEPARD, "surface_shepard", AMSPH_TYPE_REAL, 1, "1", 0)                              \
+    X(NORMAL, "normal", AMSPH_TYPE_REAL, 3, "1/m", AMSPH_FIELD_OUTPUT)                             \
+    X(UNIT_NORMAL, "unit_normal", AMSPH_TYPE_REAL, 3, "1", 0)                                      \
+    X(NORMAL_WEIGHT, "normal_weight", AMSPH_TYPE_REAL, 1, "1", 0)                                  \
+    X(RAW_CURVATURE, "raw_curvature", AMSPH_TYPE_REAL, 1, "1/m", 0)                                \
+    X(CURVATURE, "curvature", AMSPH_TYPE_REAL, 1, "1/m", AMSPH_FIELD_OUTPUT)                       \
+    X(SURFACE_TENSION, "surface_tension", AMSPH_TYPE_REAL, 1, "N/m", AMSPH_FIELD_OUTPUT)
 
 #define AMSPH_FIELD_ENUM(id, name, type, comps, unit, flags) AMSPH_FIELD_##id,
 typedef enum { AMSPH_FIELDS(AMSPH_FIELD_ENUM) AMSPH_FIELD_COUNT } amsph_field_id;

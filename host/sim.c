@@ -11,6 +11,7 @@
 #include "laser.h"
 #include "materials.h"
 #include "scene.h"
+#include "surface.h"
 #include "thermal.h"
 
 /* Steps between copies of the state that passed the guards. */
@@ -19,6 +20,20 @@
 double amsph_support_over_h(amsph_kernel_type kernel)
 {
     return kernel == AMSPH_KERNEL_QUINTIC ? 3.0 : 2.0; /* SUPPORT_OVER_H of kernels/smoothing.h */
+}
+
+/* The constants of sigma(T) (kernels/surface.cl) of one material. */
+static void surface_tension_row(const amsph_material *m, amsph_real *row)
+{
+    const int surfactant = m->surfactant_excess > 0;
+    row[MATERIAL_SURFACE_TENSION] = (amsph_real)m->surface_tension;
+    row[MATERIAL_SURFACE_TENSION_SLOPE] = (amsph_real)m->surface_tension_slope;
+    row[MATERIAL_SURFACE_TENSION_TREF] = (amsph_real)m->surface_tension_reference_temperature;
+    row[MATERIAL_SURFACE_TENSION_MIN] = (amsph_real)m->surface_tension_minimum;
+    row[MATERIAL_SURFACTANT_EXCESS] = (amsph_real)m->surfactant_excess;
+    row[MATERIAL_SURFACTANT_LOG_K] =
+        (amsph_real)(surfactant ? log(m->surfactant_segregation * m->surfactant_activity) : 0.0);
+    row[MATERIAL_SURFACTANT_ENTHALPY] = (amsph_real)m->surfactant_enthalpy;
 }
 
 static int upload_materials(amsph_sim *s)
@@ -30,6 +45,7 @@ static int upload_materials(amsph_sim *s)
         table[MATERIAL_STRIDE * m + MATERIAL_SOUND_SPEED] = (amsph_real)c->materials[m].sound_speed;
         table[MATERIAL_STRIDE * m + MATERIAL_VISCOSITY] = (amsph_real)c->materials[m].viscosity;
         table[MATERIAL_STRIDE * m + MATERIAL_MUSHY_VISCOSITY] = (amsph_real)c->materials[m].mushy_viscosity;
+        surface_tension_row(&c->materials[m], table + MATERIAL_STRIDE * m);
     }
     const size_t bytes = sizeof table;
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->materials));
@@ -46,8 +62,10 @@ static int compute_rates(amsph_sim *s, double dt)
         AMSPH_CHECK(amsph_fluid_density(s, dt));
     if (s->config.laser.enabled && !s->config.thermal.enabled)
         AMSPH_CHECK(amsph_laser_absorb(s, s->time + dt));
-    if (s->config.fluid.enabled)
-        return amsph_fluid_forces(s);
+    if (s->config.fluid.enabled) {
+        AMSPH_CHECK(amsph_fluid_forces(s));
+        return s->config.surface.enabled ? amsph_surface_forces(s) : 0;
+    }
     amsph_particles *p = &s->particles;
     const double *g = s->config.gravity;
     return AMSPH_LAUNCH(s->backend, "body_force", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
@@ -78,6 +96,8 @@ static int build_host_particles(amsph_sim *s, amsph_host_particles *host)
         status = amsph_fluid_setup(s, host);
     if (!status && s->config.thermal.enabled)
         status = amsph_thermal_setup(s, host);
+    if (!status && s->config.surface.enabled)
+        status = amsph_surface_setup(s, host);
     if (!status && s->config.laser.enabled)
         status = amsph_laser_setup(s, host);
     return status;
@@ -114,6 +134,8 @@ static int allocate_device_state(amsph_sim *s)
     const int capacity = s->particles.capacity;
     AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic,
                                 s->support, capacity));
+    if (c->surface.enabled)
+        AMSPH_CHECK(amsph_surface_check_grid(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
     return upload_materials(s);
@@ -274,6 +296,8 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
             s->dt_limit = "body force";
         }
     }
+    if (s->config.surface.enabled)
+        AMSPH_CHECK(amsph_surface_dt(s, dt, &s->dt_limit));
     if (s->config.thermal.enabled)
         amsph_thermal_dt(s, dt, &s->dt_limit);
     if (s->dt_min == 0.0 && isfinite(*dt))
@@ -305,6 +329,11 @@ int amsph_sim_step(amsph_sim *s, double dt)
         AMSPH_CHECK(amsph_thermal_advance(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));
     AMSPH_CHECK(kick(s, 0.5 * dt));
+    if (s->config.fluid.damping_rate > 0.0 && s->time < s->config.fluid.damping_end)
+        AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "damp_velocity", p->n,
+                                 amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(p->n),
+                                 amsph_arg_real(exp(-s->config.fluid.damping_rate * dt)),
+                                 amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY])));
     s->time += dt;
     s->dt = dt;
     ++s->step;

@@ -17,6 +17,7 @@
 #include "particles.h"
 #define AMSPH_SHARED_REAL amsph_real
 #include "fluid_params.h"
+#include "surface_params.h"
 #include "thermal_params.h"
 
 /* Terms of the energy ledger, as the thermal module books them. */
@@ -66,6 +67,7 @@ typedef struct {
     int thermal_iterations; /* of the last step (midpoint: fixed-point iterations) */
     double thermal_dt;      /* the diffusion limit, s (fixed for the run) */
     amsph_laser_state laser;
+    surface_params surface;
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */
     double time;    /* s */

@@ -39,6 +39,22 @@ KERNEL void kick(GLOBAL const int *kind, GLOBAL const real *acceleration, int n,
     }
 }
 
+/* Relaxation towards rest: u *= factor (= exp(-rate dt)) for fluid
+ * particles. Friction removes kinetic energy and leaves every equilibrium
+ * of the forces in place, so a scene damped to rest shows the balance of
+ * its forces (a droplet's Young-Laplace pressure) without waiting for
+ * weakly damped acoustic modes to die out. */
+KERNEL void damp_velocity(GLOBAL const int *kind, int n, real factor, GLOBAL real *velocity)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        if (kind[i] == KIND_FLUID) {
+            for (int d = 0; d < AMSPH_DIM; ++d)
+                velocity[3 * i + d] *= factor;
+        }
+    }
+}
+
 KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, int n,
                             real dt, GLOBAL real *density)
 {

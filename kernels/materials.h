@@ -8,7 +8,17 @@
 #define MATERIAL_SOUND_SPEED 1 /* artificial speed of sound c0, m/s */
 #define MATERIAL_VISCOSITY 2   /* dynamic viscosity mu of the liquid, Pa s */
 #define MATERIAL_MUSHY_VISCOSITY 3 /* mu at liquid fraction 0, Pa s */
-#define MATERIAL_STRIDE 4
+/* surface tension sigma(T) = sigma0 + slope (T - T_ref)
+ *   - R T Gamma_s ln(1 + k_l a_s exp(-dH0 / (R T))), at least sigma_min
+ * (Sahoo, DebRoy & McNallan 1988; Russell 2018 Eq. 4.2), kernels/surface.cl */
+#define MATERIAL_SURFACE_TENSION 4       /* sigma0, N/m */
+#define MATERIAL_SURFACE_TENSION_SLOPE 5 /* d sigma/dT of the clean surface (-A), N/(m K) */
+#define MATERIAL_SURFACE_TENSION_TREF 6  /* T_ref, K */
+#define MATERIAL_SURFACE_TENSION_MIN 7   /* sigma_min, N/m */
+#define MATERIAL_SURFACTANT_EXCESS 8     /* Gamma_s, mol/m^2; 0: no surfactant term */
+#define MATERIAL_SURFACTANT_LOG_K 9      /* ln(k_l a_s) */
+#define MATERIAL_SURFACTANT_ENTHALPY 10  /* dH0, J/mol */
+#define MATERIAL_STRIDE 11
 
 #ifdef AMSPH_DEVICE_H
 static inline real material_value(GLOBAL const real *table, int material, int property)

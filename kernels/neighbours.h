@@ -7,10 +7,14 @@
 
 #include "device.h"
 
+/* Cells around a particle's cell within `reach` cells along each axis:
+ * (2 reach + 1)^d. Pair loops of the kernel support reach 1 cell (cells are
+ * at least the support radius wide); wider supports, such as the surface
+ * terms' (kernels/surface.cl), reach further. */
 #if AMSPH_DIM == 2
-#define NEIGHBOUR_CELLS 9
+#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1))
 #else
-#define NEIGHBOUR_CELLS 27
+#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1) * (2 * (reach) + 1))
 #endif
 
 /* Cell coordinates of cell index c (x fastest). */
@@ -21,15 +25,17 @@ static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
     cc[2] = c / (g->ncell[0] * g->ncell[1]);
 }
 
-/* Index of the k-th of the 3^d cells around cc (k = 0 .. NEIGHBOUR_CELLS-1),
- * wrapped on periodic axes; -1 where it falls outside a closed axis. */
-static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k)
+/* Index of the k-th of the cells within `reach` of cc (k = 0 ..
+ * NEIGHBOUR_CELLS(reach) - 1), wrapped on periodic axes (which must have at
+ * least 2 reach + 1 cells); -1 where it falls outside a closed axis. */
+static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k, int reach)
 {
+    const int span = 2 * reach + 1;
     int index = 0;
     int stride = 1;
     for (int d = 0; d < AMSPH_DIM; ++d) {
-        int c = cc[d] + k % 3 - 1;
-        k /= 3;
+        int c = cc[d] + k % span - reach;
+        k /= span;
         if (c < 0 || c >= g->ncell[d]) {
             if (!g->periodic[d])
                 return -1;
@@ -63,14 +69,18 @@ static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *
         r_ab[d] = grid_nearest_image(g, d, position[3 * a + d] - position[3 * b + d]);
 }
 
-/* Loop b over every particle in the 3^d cells around cell coordinates cc
- * (particle a itself included: callers skip b == a where it matters).
- *   FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start) { ... } */
-#define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start)                                                   \
-    for (int nb_k_ = 0; nb_k_ < NEIGHBOUR_CELLS; ++nb_k_)                                          \
-        for (int nb_c_ = grid_neighbour_cell((g), (cc), nb_k_),                                    \
+/* Loop b over every particle in the cells within `reach` of cell
+ * coordinates cc (particle a itself included: callers skip b == a where it
+ * matters).
+ *   FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, reach) { ... } */
+#define FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, reach)                                     \
+    for (int nb_k_ = 0; nb_k_ < NEIGHBOUR_CELLS(reach); ++nb_k_)                                   \
+        for (int nb_c_ = grid_neighbour_cell((g), (cc), nb_k_, (reach)),                           \
                  b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                          \
                  nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                                \
              b < nb_end_; ++b)
+
+/* The 3^d cells of the kernel support. */
+#define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start) FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, 1)
 
 #endif

@@ -107,8 +107,8 @@ static const bad_case bad_cases[] = {
      NAME ":17: unknown key 'end_tme' in top level; did you mean 'end_time'?"},
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
-          "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, laser, "
-          "materials, geometry)"},
+          "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, surface, "
+          "laser, materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -121,7 +121,7 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, fluid, thermal, laser, materials, geometry)"},
+          "backend, device, gravity, fluid, thermal, surface, laser, materials, geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
     {"duplicate key", BASE2 "dx: 0.02\n",
@@ -184,7 +184,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -226,6 +226,25 @@ static const bad_case bad_cases[] = {
      HEAD2 "materials:\n  - {name: water, density: 1, specific_heat: 1, conductivity: 1}\n" GEO_BOX
            "    temperature: 300\nthermal: {viscous_heating: true}\n",
      NAME ":17: 'thermal.viscous_heating' needs the fluid module (a 'fluid:' section)"},
+#define SURFACE_MAT(extra) HEAD2 "materials:\n  - {name: water, density: 1, sound_speed: 1" extra "}\n" GEO_BOX
+    {"surface without fluid", BASE2 "surface: {}\n", NAME ":17: 'surface' needs the fluid module (a 'fluid:' section)"},
+    {"marangoni without temperatures", SURFACE_MAT("") "fluid: {}\nsurface: {marangoni: true}\n",
+     NAME ":17: 'surface.marangoni' needs temperatures: give every geometry block a 'temperature' "
+          "(or add the thermal module)"},
+    {"surface smoothing below the fluid's", SURFACE_MAT("") "fluid: {}\nsurface: {h_over_dx: 1.1}\n",
+     NAME ":17: 'surface.h_over_dx' (1.1) must be at least 'h_over_dx' (1.2)"},
+    {"surface normal cut-off above 1", SURFACE_MAT("") "fluid: {}\nsurface: {normal_cutoff: 2}\n",
+     NAME ":17: 'surface.normal_cutoff' must be in (0, 1], got 2"},
+    {"sigma slope without temperatures", SURFACE_MAT(", surface_tension_slope: -1e-3") "fluid: {}\nsurface: {}\n",
+     NAME ":9: material 'water': a temperature-dependent surface tension needs temperatures: give "
+          "every geometry block a 'temperature'"},
+    {"surfactant without activity",
+     SURFACE_MAT(", surfactant_excess: 1.3e-5, surfactant_segregation: 0.0032") "    temperature: 300\n"
+     "fluid: {}\nsurface: {}\n",
+     NAME ":9: material 'water': 'surfactant_excess' needs 'surfactant_segregation' and "
+          "'surfactant_activity' > 0 (and 'surfactant_enthalpy')"},
+    {"negative surface tension", SURFACE_MAT(", surface_tension: -1") "fluid: {}\nsurface: {}\n",
+     NAME ":9: 'materials[0].surface_tension' must be >= 0, got -1"},
     {"thermal integration unknown", BASE2 "thermal: {integration: implicit}\n",
      NAME ":17: 'thermal.integration' must be one of explicit, midpoint; got 'implicit'"},
     {"layers negative", BASE2 "    layers: -2\n",

@@ -1,0 +1,110 @@
+#include "surface.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+
+#define PI 3.14159265358979323846
+
+int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
+{
+    static const amsph_field_id fields[] = {AMSPH_FIELD_SURFACE_SHEPARD, AMSPH_FIELD_NORMAL,
+                                            AMSPH_FIELD_UNIT_NORMAL, AMSPH_FIELD_NORMAL_WEIGHT,
+                                            AMSPH_FIELD_RAW_CURVATURE, AMSPH_FIELD_CURVATURE,
+                                            AMSPH_FIELD_SURFACE_TENSION};
+    const amsph_surface_settings *st = &s->config.surface;
+    surface_params *p = &s->surface;
+    memset(p, 0, sizeof *p);
+    const double h_st = st->h_over_dx * s->config.dx;
+    p->h = (amsph_real)h_st;
+    p->normal_cutoff = (amsph_real)st->normal_cutoff;
+    p->max_curvature = (amsph_real)(0.5 / h_st);
+    p->min_shepard = (amsph_real)st->min_shepard;
+    /* cells are s->support wide; the surface support needs this many */
+    p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support - 1e-9);
+    p->tension = st->tension;
+    p->marangoni = st->marangoni;
+    for (int m = 0; m < s->config.n_materials; ++m) {
+        const amsph_material *mat = &s->config.materials[m];
+        p->temperature |= mat->surface_tension_slope != 0 || mat->surfactant_excess > 0;
+    }
+    p->temperature |= p->marangoni;
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
+        AMSPH_CHECK(amsph_host_add_field(h, fields[k]));
+    return 0;
+}
+
+int amsph_surface_check_grid(const amsph_sim *s)
+{
+    const grid_geometry *g = &s->grid.geometry;
+    const int span = 2 * s->surface.reach + 1;
+    for (int d = 0; d < s->config.dim; ++d)
+        if (g->periodic[d] && g->ncell[d] < span)
+            return amsph_bad_input("the surface terms' support (%g m) needs a periodic direction "
+                                   "of at least %d cells of %g m; direction %d has %d: widen the "
+                                   "domain or lower surface.h_over_dx",
+                                   amsph_support_over_h(s->config.kernel) * s->surface.h, span,
+                                   (double)g->cell_size, d, g->ncell[d]);
+    return 0;
+}
+
+static amsph_arg field(amsph_sim *s, amsph_field_id f)
+{
+    return amsph_arg_buffer(s->particles.field[f]);
+}
+
+/* The temperature buffer where sigma(T) or the Marangoni force reads it;
+ * otherwise any buffer stands in, unread (surface_params.temperature = 0). */
+static amsph_arg temperature(amsph_sim *s)
+{
+    return field(s, s->surface.temperature ? AMSPH_FIELD_TEMPERATURE : AMSPH_FIELD_CURVATURE);
+}
+
+int amsph_surface_forces(amsph_sim *s)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
+    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
+    const amsph_arg cells = amsph_arg_buffer(s->grid.cell);
+    const amsph_arg cell_start = amsph_arg_buffer(s->grid.cell_start);
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), cells,
+                             amsph_arg_int(n), grid, cell_start, params,
+                             field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
+                             field(s, AMSPH_FIELD_SURFACE_SHEPARD), cells, amsph_arg_int(n), grid,
+                             cell_start, params, field(s, AMSPH_FIELD_NORMAL),
+                             field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_curvature", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
+                             field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
+                             cells, amsph_arg_int(n), grid,
+                             cell_start, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
+    return AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
+                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), temperature(s),
+                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                        field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_NORMAL),
+                        field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,
+                        cell_start, amsph_arg_buffer(s->materials), params,
+                        field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_CURVATURE),
+                        field(s, AMSPH_FIELD_SURFACE_TENSION));
+}
+
+int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit)
+{
+    double sigma = 0.0, rho = INFINITY;
+    AMSPH_CHECK(amsph_reduce_max(s->backend, s->particles.field[AMSPH_FIELD_SURFACE_TENSION],
+                                 s->particles.n, &sigma));
+    for (int m = 0; m < s->config.n_materials; ++m)
+        rho = fmin(rho, s->config.materials[m].density);
+    const double h = s->h;
+    const double capillary = 0.25 * sqrt(rho * h * h * h / (2.0 * PI * sigma));
+    if (sigma > 0.0 && capillary < *dt) {
+        *dt = capillary;
+        *limit = "capillary";
+    }
+    return 0;
+}

@@ -1,0 +1,258 @@
+/* Surface tension on free surfaces: Russell's modification of Morris's CSF
+ * scheme (Russell 2018 Sec. 3.1.2, Eqs. 3.26-3.31), and the Marangoni force
+ * (Russell Eqs. 3.32-3.35 with PHYSICS.md erratum 4).
+ *
+ * Every particle (fluid, fixed solid, wall) has colour c = 1 and the outside
+ * has c = 0, so the colour gradient lives on free surfaces only: where liquid
+ * meets the solid of the same material, or a wall, there is no surface and
+ * no tension (Russell: "solid and fluid particles were considered to be of
+ * the same color function"). The terms use their own smoothing length h_st
+ * (surface_params.h; Russell: 1.5 times the fluid's), so their pair loops
+ * reach p.reach cells around a particle's cell. Four gathers:
+ *   surface_shepard    Gamma_a = sum_b V_b W_ab
+ *   surface_normal     n_a (Eq. 3.26)
+ *   surface_curvature  kappa_a of the particles with a normal (Eqs. 3.27-3.29, cap)
+ *   surface_force      smoothed kappa (Eq. 3.30), the CSF force (Eq. 3.31) and
+ *                      the Marangoni force (Eq. 3.35) on fluid particles.
+ * W is the case's smoothing kernel at h_st (kernels/smoothing.h). */
+#include "device.h"
+#include "kinds.h"
+#include "materials.h"
+#include "neighbours.h"
+#include "smoothing.h"
+#include "surface_params.h"
+#include "vec3.h"
+
+#define GAS_CONSTANT REAL(8.314462618) /* J/(mol K) */
+
+/* ln(1 + e^y), without overflow for large y. */
+static inline real softplus(real y)
+{
+    return y > REAL(0.0) ? y + log1p(exp(-y)) : log1p(exp(y));
+}
+
+/* Surface tension sigma(T) of a material and its slope d sigma/dT
+ * (Sahoo, DebRoy & McNallan 1988; Russell 2018 Eq. 4.2):
+ *   sigma = sigma0 + slope (T - T_ref) - R T Gamma_s ln(1 + k_l a_s e^(-dH0/(R T)))
+ *   d sigma/dT = slope - R Gamma_s ln(1 + K a_s) - Gamma_s dH0 K a_s / (T (1 + K a_s)),
+ * K = k_l e^(-dH0/(R T)); with Gamma_s = 0 a linear law, with slope = 0 too
+ * a constant; never below sigma_min (where it is held, the slope is 0).
+ * ln(1 + K a_s) = softplus(y), y = ln(k_l a_s) - dH0/(R T), stays finite
+ * where K would overflow a float (cold solid, dH0 < 0). */
+static inline real surface_tension(GLOBAL const real *materials, int material, real t, real *slope)
+{
+    real sigma = material_value(materials, material, MATERIAL_SURFACE_TENSION) +
+                 material_value(materials, material, MATERIAL_SURFACE_TENSION_SLOPE) *
+                     (t - material_value(materials, material, MATERIAL_SURFACE_TENSION_TREF));
+    real d_sigma = material_value(materials, material, MATERIAL_SURFACE_TENSION_SLOPE);
+    const real excess = material_value(materials, material, MATERIAL_SURFACTANT_EXCESS);
+    if (excess > REAL(0.0)) {
+        const real t_abs = fmax(t, REAL(1.0));
+        const real enthalpy = material_value(materials, material, MATERIAL_SURFACTANT_ENTHALPY);
+        const real y = material_value(materials, material, MATERIAL_SURFACTANT_LOG_K) -
+                       enthalpy / (GAS_CONSTANT * t_abs);
+        const real coverage = REAL(1.0) / (REAL(1.0) + exp(-y)); /* K a_s / (1 + K a_s) */
+        sigma -= GAS_CONSTANT * t_abs * excess * softplus(y);
+        d_sigma -= GAS_CONSTANT * excess * softplus(y) + excess * enthalpy * coverage / t_abs;
+    }
+    const real sigma_min = material_value(materials, material, MATERIAL_SURFACE_TENSION_MIN);
+    if (sigma < sigma_min) {
+        sigma = sigma_min;
+        d_sigma = REAL(0.0);
+    }
+    *slope = d_sigma;
+    return sigma;
+}
+
+static inline real normal_size(GLOBAL const real *normal, int a)
+{
+    return sqrt(normal[3 * a] * normal[3 * a] + normal[3 * a + 1] * normal[3 * a + 1] +
+                normal[3 * a + 2] * normal[3 * a + 2]);
+}
+
+/* Gamma_a = sum_b V_b W_ab at h_st, over every particle. */
+KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
+                            GLOBAL const real *mass, GLOBAL const int *cell, int n, grid_geometry g,
+                            GLOBAL const int *cell_start, surface_params p, GLOBAL real *shepard)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        real sum = REAL(0.0);
+        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            sum += smoothing_w(sqrt(dot3(r_ab, r_ab)), p.h) * mass[b] / density[b];
+        }
+        shepard[a] = sum;
+    }
+}
+
+/* The free-surface-consistent colour gradient (Russell 2018 Eq. 3.26) with
+ * c = 1 on every particle:
+ *   n_a = sum_b V_b (c_b / Gamma_a + c_a / Gamma_b) grad_a W_ab,
+ * which points into the material, of size ~ 1 / (interface width); across
+ * a surface it integrates to 1 (the jump of c). The unit normal n^_a enters
+ * the curvature with the weight psi_a (Russell's ceil(n^_a), Eq. 3.28):
+ *   psi_a = clamp(|n_a| h_st / cut-off - 1, 0, 1)   (cut-off: Russell Eq. 3.27, erratum 5)
+ * where n_a . grad Gamma_a > 0 (grad Gamma_a = sum_b V_b grad_a W_ab) and
+ * Gamma_a >= min_shepard, psi_a = 0 elsewhere. Two changes to the thesis:
+ *  - psi ramps from 0 at the cut-off to 1 at twice the cut-off instead of
+ *    jumping: the third row below a surface sits at |n| h ~ 0.1, and its
+ *    normals switching on and off (Russell's flaw 3, which his curvature
+ *    smoothing only softens) drove a 2D droplet unstable after a few seconds;
+ *  - two to three rows below a surface, Eq. 3.26 has a lobe that points out
+ *    of the material (the 1/Gamma_b of the surface particles outweighs the
+ *    missing outer neighbours); on a circle cut from a square lattice those
+ *    normals passed the cut-off at the steps and made the mean curvature
+ *    2.6 times too large. They are not surface normals. */
+KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *density,
+                           GLOBAL const real *mass, GLOBAL const real *shepard,
+                           GLOBAL const int *cell, int n, grid_geometry g,
+                           GLOBAL const int *cell_start, surface_params p, GLOBAL real *normal,
+                           GLOBAL real *unit_normal, GLOBAL real *normal_weight)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        const real inv_gamma_a = REAL(1.0) / shepard[a];
+        real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real f = smoothing_grad_factor(sqrt(dot3(r_ab, r_ab)), p.h); /* grad_a W_ab = f r_ab */
+            const real v_b = mass[b] / density[b];
+            const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
+            for (int d = 0; d < 3; ++d) {
+                sum[d] += weight * r_ab[d];
+                grad_gamma[d] += v_b * f * r_ab[d];
+            }
+        }
+        const real size = sqrt(dot3(sum, sum));
+        const int inward = dot3(sum, grad_gamma) > REAL(0.0) && shepard[a] >= p.min_shepard;
+        const real psi = inward ? fmin(fmax(size * p.h / p.normal_cutoff - REAL(1.0), REAL(0.0)), REAL(1.0))
+                                : REAL(0.0);
+        normal_weight[a] = psi;
+        for (int d = 0; d < 3; ++d) {
+            normal[3 * a + d] = sum[d];
+            unit_normal[3 * a + d] = psi > REAL(0.0) ? sum[d] / size : REAL(0.0);
+        }
+    }
+}
+
+/* Curvature of the particles with a normal (psi_a > 0), over the neighbours
+ * with one (Russell 2018 Eqs. 3.28, 3.29; Morris 2000 sums over those only):
+ *   Gamma*_a = sum_b psi_b V_b W_ab,
+ *   kappa_a  = (1/Gamma*_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
+ * capped at |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4); 0 elsewhere.
+ * With the inward normal, a convex surface has kappa < 0 (a circle: -1/R). */
+KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *density,
+                              GLOBAL const real *mass, GLOBAL const real *unit_normal,
+                              GLOBAL const real *normal_weight, GLOBAL const int *cell, int n,
+                              grid_geometry g,
+                              GLOBAL const int *cell_start, surface_params p,
+                              GLOBAL real *curvature)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real kappa = REAL(0.0);
+        if (normal_weight[a] > REAL(0.0)) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            real gamma_star = REAL(0.0), divergence = REAL(0.0);
+            FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+            {
+                if (normal_weight[b] > REAL(0.0)) {
+                    real r_ab[3];
+                    grid_displacement(&g, position, a, b, r_ab);
+                    const real r = sqrt(dot3(r_ab, r_ab));
+                    const real v_b = normal_weight[b] * mass[b] / density[b];
+                    real n_ba[3];
+                    for (int d = 0; d < 3; ++d)
+                        n_ba[d] = unit_normal[3 * b + d] - unit_normal[3 * a + d];
+                    gamma_star += v_b * smoothing_w(r, p.h);
+                    divergence += v_b * smoothing_grad_factor(r, p.h) * dot3(n_ba, r_ab);
+                }
+            }
+            kappa = fmin(fmax(divergence / gamma_star, -p.max_curvature), p.max_curvature);
+        }
+        curvature[a] = kappa;
+    }
+}
+
+/* On fluid particles, with the curvature smoothed over the particles with a
+ * normal (Russell 2018 Eq. 3.30),
+ *   kappa~_a = (1/Gamma*_a) sum_b psi_b V_b kappa_b W_ab,
+ * the CSF force per volume (Russell Eq. 3.31)
+ *   f_a = -sigma(T_a) kappa~_a n_a
+ * and the Marangoni force per volume (Russell Eqs. 3.33, 3.35) with the
+ * free-surface-consistent temperature gradient (PHYSICS.md erratum 4)
+ *   grad T_a = (1/Gamma_a) sum_b V_b (T_b - T_a) grad_a W_ab,
+ *   f_a += d sigma/dT (grad T_a - (grad T_a . n^_a) n^_a) |n_a|,
+ * add f_a / rho_a to the acceleration. Every particle gets its smoothed
+ * curvature and sigma(T) (outputs; the capillary time step reads sigma). */
+KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *density,
+                          GLOBAL const real *mass, GLOBAL const real *temperature,
+                          GLOBAL const int *kind, GLOBAL const int *material,
+                          GLOBAL const real *shepard, GLOBAL const real *normal,
+                          GLOBAL const real *normal_weight, GLOBAL const real *raw_curvature, GLOBAL const int *cell, int n,
+                          grid_geometry g, GLOBAL const int *cell_start,
+                          GLOBAL const real *materials, surface_params p,
+                          GLOBAL real *acceleration, GLOBAL real *curvature,
+                          GLOBAL real *tension)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        const real t_a = p.temperature ? temperature[a] : REAL(0.0);
+        real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
+        real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        {
+            real r_ab[3];
+            grid_displacement(&g, position, a, b, r_ab);
+            const real r = sqrt(dot3(r_ab, r_ab));
+            const real v_b = mass[b] / density[b];
+            if (normal_weight[b] > REAL(0.0)) {
+                const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
+                gamma_star += w;
+                kappa_sum += w * raw_curvature[b];
+            }
+            if (p.marangoni) {
+                const real weight = v_b * (temperature[b] - t_a) * smoothing_grad_factor(r, p.h);
+                for (int d = 0; d < 3; ++d)
+                    grad_t[d] += weight * r_ab[d];
+            }
+        }
+        const real kappa = gamma_star > REAL(0.0) ? kappa_sum / gamma_star : REAL(0.0);
+        real d_sigma;
+        const real sigma = surface_tension(materials, material[a], t_a, &d_sigma);
+        curvature[a] = kappa;
+        tension[a] = sigma;
+        if (kind[a] == KIND_FLUID && shepard[a] >= p.min_shepard) {
+            real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            if (p.tension)
+                for (int d = 0; d < 3; ++d)
+                    force[d] = -sigma * kappa * normal[3 * a + d];
+            if (p.marangoni) {
+                const real norm = normal_size(normal, a);
+                real n_hat[3];
+                for (int d = 0; d < 3; ++d)
+                    n_hat[d] = norm > REAL(0.0) ? normal[3 * a + d] / norm : REAL(0.0);
+                for (int d = 0; d < 3; ++d)
+                    grad_t[d] /= shepard[a];
+                const real normal_part = dot3(grad_t, n_hat);
+                for (int d = 0; d < 3; ++d)
+                    force[d] += d_sigma * (grad_t[d] - normal_part * n_hat[d]) * norm;
+            }
+            for (int d = 0; d < 3; ++d)
+                acceleration[3 * a + d] += force[d] / density[a];
+        }
+    }
+}

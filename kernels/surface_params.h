@@ -1,0 +1,22 @@
+/* Settings of the surface module (surface tension and Marangoni force) as
+ * the kernels see them, passed by value; the host includes it with
+ * AMSPH_SHARED_REAL = amsph_real. */
+#ifndef AMSPH_SURFACE_PARAMS_H
+#define AMSPH_SURFACE_PARAMS_H
+
+#ifndef AMSPH_SHARED_REAL
+#define AMSPH_SHARED_REAL real
+#endif
+
+typedef struct {
+    AMSPH_SHARED_REAL h;             /* smoothing length of the surface terms, m (1.5 h by default) */
+    AMSPH_SHARED_REAL normal_cutoff; /* a normal counts where |n| h >= this (Russell Eq. 3.27, erratum 5) */
+    AMSPH_SHARED_REAL max_curvature; /* |kappa| <= 1 / (2 h) (Russell Sec. 3.1.2, flaw 4), 1/m */
+    AMSPH_SHARED_REAL min_shepard;   /* particles with Gamma below this carry no surface force */
+    int reach;                       /* cells the surface support spans from a particle's cell */
+    int tension;                     /* 1: the normal (curvature) force */
+    int marangoni;                   /* 1: the tangential force d sigma/dT grad_s T |n| */
+    int temperature;                 /* 1: sigma depends on T (the temperature buffer is read) */
+} surface_params;
+
+#endif
