@@ -3,13 +3,15 @@
  * ends, field by field in the final snapshot and in every field and scalar
  * of the checkpoint, with the same series rows, on every backend, restarted
  * in the checkpoint's directory and in another: for the dam break and for a
- * melting slab under a laser (thermal, laser and fluid modules). A bad restart file (missing, not a checkpoint,
- * truncated, corrupt, other version, other dimension, other case, other
- * field set) is refused as bad input with a message saying which. A write
- * that fails for lack of space fails the run with a message and leaves the
- * last checkpoint intact. A stop request writes a checkpoint and a final
+ * melting slab under a laser (thermal, laser and fluid modules). A bad
+ * restart file (missing, not a checkpoint, truncated, corrupt, other
+ * version, other dimension, other case, other field set, other precision)
+ * is refused as bad input with a message saying which. A write that fails
+ * for lack of space fails the run with a message and leaves the last
+ * checkpoint intact. A stop request writes a checkpoint and a final
  * snapshot; checkpoints also come every checkpoint_interval of wall time. */
 #include <hdf5.h>
+#include <inttypes.h>
 #include <signal.h>
 #include <stdio.h>
 #include <sys/resource.h>
@@ -18,6 +20,7 @@
 
 #include "case.h"
 #include "checkpoint.h"
+#include "hash.h"
 #include "series.h"
 #include "sim.h"
 #include "testing.h"
@@ -399,6 +402,33 @@ static void write_without_shepard(const char *good, const char *path)
     amsph_checkpoint_free(&ck);
 }
 
+/* The checkpoint of `good` as a build of the other precision (AMSPH_DOUBLE)
+ * would label it, written to path: its HDF5 part with the root attribute
+ * real_bytes changed to the other size, sealed with a fresh trailer (the
+ * layout of checkpoint.h), so that only the precision is wrong. */
+static void write_other_precision(const char *good, const char *path)
+{
+    const long hdf5_bytes = file_size(good) - 64;
+    copy_altered(good, path, hdf5_bytes, -1, 0, NULL);
+    const int other = sizeof(amsph_real) == 4 ? 8 : 4;
+    hid_t file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t attr = file < 0 ? -1 : H5Aopen(file, "real_bytes", H5P_DEFAULT);
+    CHECK(attr >= 0 && H5Awrite(attr, H5T_NATIVE_INT, &other) >= 0, "cannot relabel %s", path);
+    if (attr >= 0)
+        H5Aclose(attr);
+    if (file >= 0)
+        H5Fclose(file);
+    static unsigned char bytes[1 << 22];
+    FILE *f = fopen(path, "r+b");
+    const size_t n = f ? fread(bytes, 1, sizeof bytes, f) : 0;
+    char trailer[64] = {0};
+    snprintf(trailer, sizeof trailer, "amsph checkpoint %d %zu %016" PRIx64 "\n", AMSPH_CHECKPOINT_VERSION, n,
+             amsph_hash(AMSPH_HASH_START, bytes, n));
+    CHECK(f && n > 0 && fwrite(trailer, 1, sizeof trailer, f) == sizeof trailer, "cannot seal %s", path);
+    if (f)
+        fclose(f);
+}
+
 static void test_refusals(amsph_backend *b, const char *dir)
 {
     char good[600], bad[600], snapshot[600];
@@ -419,6 +449,11 @@ static void test_refusals(amsph_backend *b, const char *dir)
     expect_refusal(b, good, dambreak_longer, "written for another case");
     write_without_shepard(good, bad);
     expect_refusal(b, bad, dambreak, "lacks field 'shepard'");
+    write_other_precision(good, bad);
+    expect_refusal(b, bad, dambreak, sizeof(amsph_real) == 4 ? "written by a build with 8-byte reals; this build "
+                                                               "has 4-byte reals (AMSPH_DOUBLE=OFF)"
+                                                             : "written by a build with 4-byte reals; this build "
+                                                               "has 8-byte reals (AMSPH_DOUBLE=ON)");
 }
 
 /* Sets the soft limit on the size of files this process writes. */
