@@ -42,6 +42,7 @@ _Static_assert(sizeof(amsph_backend_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_absorption) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_material_preset) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
@@ -133,6 +134,47 @@ static const choice slip_choices[] = {
 static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLUMETRIC, 0},
                                             {"surface", AMSPH_ABSORPTION_SURFACE, 0},
                                             {NULL, 0, 0}};
+
+static const choice preset_choices[] = {{"none", AMSPH_PRESET_NONE, 0},
+                                        {"steel_304", AMSPH_PRESET_STEEL_304, 0},
+                                        {"steel_fuchs", AMSPH_PRESET_STEEL_FUCHS, 0},
+                                        {NULL, 0, 0}};
+
+/* The keys a material preset fills (PHYSICS.md "Materials"), as they would
+ * be written in the case file. */
+#define MAX_PRESET_KEYS 12
+typedef struct {
+    const char *key, *value;
+} preset_key;
+
+typedef struct {
+    const char *source;
+    preset_key keys[MAX_PRESET_KEYS];
+} preset;
+
+static const preset presets[] = {
+    [AMSPH_PRESET_STEEL_304] =
+        {"304 stainless steel, Russell 2018 §4.4 Table 4.1 (solid → liquid, blended by the liquid "
+         "fraction; liquid conductivity ×10 for unresolved convection); its density law is not a "
+         "preset value: give `density`",
+         {{"viscosity", "0.01"},
+          {"mushy_viscosity", "1.0"},
+          {"specific_heat", "711.17"},
+          {"liquid_specific_heat", "937.35"},
+          {"conductivity", "20"},
+          {"liquid_conductivity", "209.3"},
+          {"melting_temperature", "1723"},
+          {"melting_range", "100"}}},
+    [AMSPH_PRESET_STEEL_FUCHS] =
+        {"simplified stainless steel, Fuchs et al. 2022 Tables 1 and 2 (no latent heat; its phase "
+         "switch at T_m becomes a 1 K mushy interval)",
+         {{"density", "7430"},
+          {"viscosity", "6.0e-3"},
+          {"specific_heat", "965"},
+          {"conductivity", "35.95"},
+          {"melting_temperature", "1700"},
+          {"melting_range", "1"}}},
+};
 
 #define VARIANT_BIT(v) (1u << (v))
 #define BOX_ONLY VARIANT_BIT(AMSPH_SHAPE_BOX)
@@ -361,6 +403,9 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "name", .type = VT_NAME, .flags = F_REQUIRED,
      .offset = MAT(name), .rule = "unique; at most 63 characters",
      .doc = "Name by which geometry refers to the material"},
+    {.section = SEC_MATERIAL, .key = "preset", .type = VT_CHOICE, .choices = preset_choices,
+     .def = AMSPH_PRESET_NONE, .offset = MAT(preset),
+     .doc = "A named material (the presets below) that gives the keys this material does not"},
     {.section = SEC_MATERIAL, .key = "density", .type = VT_NUMBER, .unit = "kg/m³",
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = MAT(density),
      .doc = "Reference density"},
@@ -485,6 +530,8 @@ typedef struct {
     size_t material_line[AMSPH_MAX_MATERIALS]; /* where each material's name is */
     size_t thermal_line;                       /* where the thermal section starts */
     size_t surface_line;                       /* where the surface section starts */
+    yaml_node_t preset_key[MAX_PRESET_KEYS];   /* the keys and values a preset fills into */
+    yaml_node_t preset_value[MAX_PRESET_KEYS]; /* the material being read */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -1114,6 +1161,50 @@ static int collect_keys(parser *p, scope *sc)
     return 0;
 }
 
+/* The spec of a key known to be in the section. */
+static int spec_named(section_id section, const char *key)
+{
+    int i = 0;
+    while (specs[i].section != section || strcmp(specs[i].key, key))
+        i++;
+    return i;
+}
+
+/* A plain scalar `text` that reads as if it were written where `at` is. */
+static const yaml_node_t *scalar_node(yaml_node_t *node, const char *text, const yaml_node_t *at)
+{
+    memset(node, 0, sizeof *node);
+    node->type = YAML_SCALAR_NODE;
+    node->data.scalar.value = (yaml_char_t *)text; /* only read */
+    node->data.scalar.length = strlen(text);
+    node->data.scalar.style = YAML_PLAIN_SCALAR_STYLE;
+    node->start_mark = node->end_mark = at->start_mark;
+    return node;
+}
+
+/* A material's `preset`: every key of the preset that the material does not
+ * give is read as if written with the preset's value on the preset's line. */
+static int fill_from_preset(parser *p, scope *sc)
+{
+    const int at = spec_named(SEC_MATERIAL, "preset");
+    if (!sc->value[at])
+        return 0;
+    char path[PATH_LEN];
+    const choice *c;
+    set_path(path, "%spreset", sc->prefix);
+    if (read_choice(p, preset_choices, sc->value[at], line_of(sc->value[at]), path, &c))
+        return CASE_ERROR;
+    const preset_key *keys = presets[c->value].keys;
+    for (int k = 0; k < MAX_PRESET_KEYS && keys[k].key; k++) {
+        const int i = spec_named(SEC_MATERIAL, keys[k].key);
+        if (!sc->value[i]) {
+            sc->key[i] = scalar_node(&p->preset_key[k], keys[k].key, sc->value[at]);
+            sc->value[i] = scalar_node(&p->preset_value[k], keys[k].value, sc->value[at]);
+        }
+    }
+    return 0;
+}
+
 static int apply_default(parser *p, scope *sc, const key_spec *k, void *dst)
 {
     if (k->flags & F_REQUIRED) {
@@ -1428,7 +1519,7 @@ static int finish_scope(parser *p, const scope *sc)
 
 static int load_scope(parser *p, scope *sc)
 {
-    if (collect_keys(p, sc))
+    if (collect_keys(p, sc) || (sc->section == SEC_MATERIAL && fill_from_preset(p, sc)))
         return CASE_ERROR;
     for (size_t i = 0; i < N_SPECS; i++)
         if (specs[i].section == sc->section && load_key(p, sc, i))
@@ -1706,5 +1797,14 @@ void amsph_case_print_keys(void *file)
                 type_name(k->type), k->unit ? k->unit : "-", default_text(k).s);
         print_allowed(f, k);
         fprintf(f, " | %s |\n", k->doc);
+    }
+    fprintf(f, "\nMaterial presets (`materials[].preset`); a key the material gives overrides the "
+               "preset's:\n\n| Preset | Keys | Source |\n|---|---|---|\n");
+    for (const choice *c = preset_choices + 1; c->name; c++) {
+        fprintf(f, "| `%s` | ", c->name);
+        const preset_key *keys = presets[c->value].keys;
+        for (int k = 0; k < MAX_PRESET_KEYS && keys[k].key; k++)
+            fprintf(f, "%s`%s: %s`", k ? ", " : "", keys[k].key, keys[k].value);
+        fprintf(f, " | %s |\n", presets[c->value].source);
     }
 }

@@ -44,8 +44,16 @@ typedef struct {
     double v[AMSPH_MAX_TABLE];
 } amsph_property;
 
+/* Named materials of PHYSICS.md "Materials" (`preset` in case files). */
+typedef enum {
+    AMSPH_PRESET_NONE = 0,
+    AMSPH_PRESET_STEEL_304 = 1,  /* 304 stainless steel (Russell 2018 Table 4.1) */
+    AMSPH_PRESET_STEEL_FUCHS = 2 /* simplified stainless steel (Fuchs et al. 2022 Table 2) */
+} amsph_material_preset;
+
 typedef struct {
     char name[AMSPH_NAME_LEN];
+    int preset;       /* amsph_material_preset whose values fill the keys not given */
     double density;   /* reference density rho0, kg/m^3, > 0 */
     double viscosity; /* dynamic viscosity (of the liquid), Pa s, >= 0 (default 0) */
     double sound_speed; /* artificial speed of sound c0, m/s, >= 0 (default 0: not set) */

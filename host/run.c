@@ -12,6 +12,7 @@
 #include "output.h"
 #include "series.h"
 #include "sim.h"
+#include "thermal.h"
 
 static double wall_seconds(void)
 {
@@ -130,17 +131,20 @@ static int write_checkpoint(run *r)
 static int write_output(run *r)
 {
     amsph_sim *s = r->s;
-    amsph_host_particles host;
+    amsph_host_particles host = {0};
     const double now = wall_seconds();
     const double interval = now - r->row_wall;
     const double particle_steps = r->pr.particle_steps - r->row_particle_steps;
-    const amsph_series_sample sample = {
+    amsph_series_sample sample = {
         .sim = s,
         .particles = &host,
+        .enthalpy = NAN,
         .wall_seconds = r->wall_before + now - r->pr.start,
         .particle_steps_per_second = interval > 0.0 ? particle_steps / interval : 0.0,
     };
-    int status = amsph_particles_download(&s->particles, &host);
+    int status = s->config.thermal.enabled ? amsph_thermal_energy(s, &sample.enthalpy) : 0;
+    if (!status)
+        status = amsph_particles_download(&s->particles, &host);
     if (!status)
         status = amsph_output_snapshot(&r->out, &host, s->time, s->step);
     if (!status)

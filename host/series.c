@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "error.h"
+#include "thermal.h"
 
 static const amsph_real *field(const amsph_series_sample *x, amsph_field_id f)
 {
@@ -101,6 +102,29 @@ static double kinetic_energy(const amsph_series_sample *x)
     return sum;
 }
 
+/* The thermal module's quantities: the energy ledger (sim.h), the
+ * material's enthalpy and the iterations of the last enthalpy update;
+ * NAN without the module. */
+static double thermal_value(const amsph_series_sample *x, double value)
+{
+    return x->sim->config.thermal.enabled ? value : NAN;
+}
+
+static double enthalpy(const amsph_series_sample *x) { return thermal_value(x, x->enthalpy); }
+static double laser_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.laser); }
+static double radiated_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.radiation); }
+static double wall_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.walls); }
+static double viscous_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.viscous); }
+static double thermal_iterations(const amsph_series_sample *x)
+{
+    return thermal_value(x, x->sim->thermal_iterations);
+}
+
+static double ledger_error(const amsph_series_sample *x)
+{
+    return thermal_value(x, amsph_energy_ledger_error(&x->sim->ledger, x->enthalpy));
+}
+
 /* Sums run over every particle (walls and solids included); masses, and so
  * momenta and energies, are per unit depth in 2D. */
 const amsph_series_column amsph_series_columns[] = {
@@ -119,6 +143,22 @@ const amsph_series_column amsph_series_columns[] = {
     {"momentum_y", "kg m/s", "Total momentum, y component", momentum_y},
     {"momentum_z", "kg m/s", "Total momentum, z component", momentum_z},
     {"kinetic_energy", "J", "Total kinetic energy, sum of m u^2 / 2", kinetic_energy},
+    {"enthalpy", "J",
+     "Sum of m h over fluid and solid particles (sensible heat from 0 K plus latent heat); this and "
+     "the next six are empty without the thermal module",
+     enthalpy},
+    {"laser_energy", "J", "Laser energy absorbed by the material since the start", laser_energy},
+    {"radiated_energy", "J", "Energy radiated from free surfaces since the start", radiated_energy},
+    {"wall_heat", "J", "Heat given to the material by the Dirichlet walls since the start (negative: taken)",
+     wall_heat},
+    {"viscous_heat", "J", "Viscous dissipation turned into heat since the start", viscous_heat},
+    {"ledger_error", "1",
+     "Energy ledger: abs(enthalpy change - (laser - radiated + wall + viscous)) over the larger of the "
+     "change and the sum of the four terms' magnitudes",
+     ledger_error},
+    {"thermal_iterations", "1",
+     "Fixed-point iterations of the last enthalpy update (1 explicit; 0 before the first step)",
+     thermal_iterations},
     {"wall_seconds", "s", "Wall time spent on the simulation so far, restarts included", wall_seconds},
     {"particle_steps_per_second", "1/s", "Particles times steps per wall second since the previous row",
      throughput},

@@ -6,7 +6,8 @@
  * a description and a function that computes its value from the state at
  * the row's time. A module adds a column with one entry; `amsph columns`
  * prints the table that README.md carries. A column that does not apply to
- * the case (max_temperature without temperatures) is an empty cell. */
+ * the case (max_temperature without temperatures, the energy ledger without
+ * the thermal module) is an empty cell. */
 #ifndef AMSPH_SERIES_H
 #define AMSPH_SERIES_H
 
@@ -18,6 +19,7 @@
 typedef struct {
     const amsph_sim *sim;
     const amsph_host_particles *particles; /* every field of the sim, downloaded */
+    double enthalpy; /* of the material (amsph_thermal_energy), J; NAN without the thermal module */
     double wall_seconds;              /* spent on the simulation so far, restarts included */
     double particle_steps_per_second; /* since the previous row */
 } amsph_series_sample;

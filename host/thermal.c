@@ -394,15 +394,19 @@ int amsph_thermal_energy(amsph_sim *s, double *energy)
     return amsph_reduce_sum(s->backend, s->work, n, energy);
 }
 
-int amsph_thermal_ledger_error(amsph_sim *s, double *error)
+double amsph_energy_ledger_error(const amsph_energy_ledger *l, double energy)
 {
-    const amsph_energy_ledger *l = &s->ledger;
-    double energy;
-    AMSPH_CHECK(amsph_thermal_energy(s, &energy));
     const double change = energy - l->initial;
     const double booked = l->laser - l->radiation + l->walls + l->viscous;
     const double gross = fabs(l->laser) + fabs(l->radiation) + fabs(l->walls) + fabs(l->viscous);
     const double scale = fmax(gross, fabs(change));
-    *error = scale > 0.0 ? fabs(change - booked) / scale : 0.0;
+    return scale > 0.0 ? fabs(change - booked) / scale : 0.0;
+}
+
+int amsph_thermal_ledger_error(amsph_sim *s, double *error)
+{
+    double energy;
+    AMSPH_CHECK(amsph_thermal_energy(s, &energy));
+    *error = amsph_energy_ledger_error(&s->ledger, energy);
     return 0;
 }

@@ -25,7 +25,10 @@ void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit);
 /* Sum of m h over fluid and solid particles, J (per metre in 2D). */
 int amsph_thermal_energy(amsph_sim *s, double *energy);
 /* |energy change - booked exchanges| over the gross exchange (0 when
- * nothing was exchanged and nothing changed). */
+ * nothing was exchanged and nothing changed), with the material's enthalpy
+ * now `energy` (amsph_thermal_energy). */
+double amsph_energy_ledger_error(const amsph_energy_ledger *l, double energy);
+/* The same for the sim's state now. */
 int amsph_thermal_ledger_error(amsph_sim *s, double *error);
 
 /* Node table of one material (exposed for tests): temperatures, enthalpies

@@ -217,6 +217,19 @@ static const bad_case bad_cases[] = {
      NAME ":12: 'materials[0].melting_range' (30 K) must be below 2 'melting_temperature' (10 K)"},
     {"emissivity above 1", THERMAL_MAT "    emissivity: 1.5\n",
      NAME ":11: 'materials[0].emissivity' must be in [0, 1], got 1.5"},
+    /* material presets: unknown names are listed; a preset's value reads
+     * as written on the preset's line */
+    {"unknown preset", HEAD2 "materials:\n  - name: steel\n    density: 1\n    preset: steel_316\n" GEO_BOX,
+     NAME ":11: 'materials[0].preset' must be one of none, steel_304, steel_fuchs; got 'steel_316'"},
+    {"preset is a list", HEAD2 "materials:\n  - name: steel\n    preset: [steel_304]\n" GEO_BOX,
+     NAME ":10: 'materials[0].preset' must be one of none, steel_304, steel_fuchs; got a list"},
+    {"steel_304 without density", HEAD2 "materials:\n  - name: steel\n    preset: steel_304\n" GEO_BOX,
+     NAME ":9: missing required key 'density' in materials[0]"},
+    {"preset's melting range against a given melting temperature",
+     HEAD2 "materials:\n  - name: steel\n    preset: steel_304\n    density: 1\n    melting_temperature: 40\n",
+     NAME ":10: 'materials[0].melting_range' (100 K) must be below 2 'melting_temperature' (40 K)"},
+    {"preset with a bad key of its own", HEAD2 "materials:\n  - {name: steel, preset: steel_fuchs, conductivity: -1}\n",
+     NAME ":9: 'materials[0].conductivity' must be >= 0, got -1"},
     {"thermal without specific heat", BASE2 "    temperature: 300\nthermal: {}\n",
      NAME ":9: material 'water' needs 'specific_heat' for the thermal module"},
     {"thermal without temperature",
@@ -675,6 +688,45 @@ static void check_tank2d(const amsph_case *c)
     expect(vec_is(g->center, 0, 0, 0) && vec_is(g->velocity, 1, 0, 0), "circle vectors");
 }
 
+/* Material presets against PHYSICS.md "Materials": 304 steel (Russell 2018
+ * Table 4.1), with its own density and one key overridden; Fuchs et al.'s
+ * simplified steel alone; `none`. */
+static const char presets2d[] = HEAD2 "materials:\n"
+                                      "  - {name: a, preset: steel_304, density: 7900, viscosity: 0.02}\n"
+                                      "  - {name: b, preset: steel_fuchs}\n"
+                                      "  - {name: c, preset: none, density: 1000}\n"
+                                      "geometry:\n"
+                                      "  - {shape: box, kind: fluid, material: b, min: [0, 0], max: [0.5, 0.5]}\n";
+
+static int constant_is(const amsph_property *p, double v)
+{
+    return p->n == 1 && near(p->v[0], v);
+}
+
+static void check_presets2d(const amsph_case *c)
+{
+    const amsph_material *a = &c->materials[0], *b = &c->materials[1], *none = &c->materials[2];
+    expect(a->preset == AMSPH_PRESET_STEEL_304 && b->preset == AMSPH_PRESET_STEEL_FUCHS &&
+               none->preset == AMSPH_PRESET_NONE,
+           "preset values");
+    expect(near(a->density, 7900) && near(a->viscosity, 0.02), "304: the material's own density and viscosity");
+    expect(near(a->mushy_viscosity, 1.0), "304: mushy viscosity 1.0 Pa s (solid)");
+    expect(constant_is(&a->specific_heat, 711.17) && constant_is(&a->liquid_specific_heat, 937.35),
+           "304: c_p 711.17 -> 937.35");
+    expect(constant_is(&a->conductivity, 20) && constant_is(&a->liquid_conductivity, 209.3), "304: k 20 -> 209.3");
+    expect(near(a->melting_temperature, 1723) && near(a->melting_range, 100), "304: T_m 1723 K over 100 K");
+    expect(a->latent_heat == 0 && a->emissivity == 0 && a->sound_speed == 0, "304: the other keys' defaults");
+    expect(near(b->density, 7430) && near(b->viscosity, 6e-3) && near(b->mushy_viscosity, 6e-3),
+           "Fuchs: rho0 7430, eta 6e-3 (mushy: the same)");
+    expect(constant_is(&b->specific_heat, 965) && constant_is(&b->liquid_specific_heat, 965), "Fuchs: c_p 965");
+    expect(constant_is(&b->conductivity, 35.95) && constant_is(&b->liquid_conductivity, 35.95), "Fuchs: k 35.95");
+    expect(near(b->melting_temperature, 1700) && near(b->melting_range, 1) && b->latent_heat == 0,
+           "Fuchs: T_m 1700 K, no latent heat");
+    expect(near(none->density, 1000) && none->viscosity == 0 && none->specific_heat.n == 0 &&
+               none->melting_temperature == 0,
+           "none: defaults");
+}
+
 typedef struct {
     const char *name;
     const char *text;
@@ -687,6 +739,7 @@ static const good_case good_cases[] = {
     {"every key, 3D, shuffled", full3d, check_full3d},
     {"2D tank and circle", tank2d, check_tank2d},
     {"2D laser, surface absorption, defaults", laser2d, check_laser2d},
+    {"material presets", presets2d, check_presets2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,

@@ -1,14 +1,17 @@
 /* Checkpoints and restarts. A run stopped at step 100 (--max-steps) and
  * restarted to step 200 ends bit for bit where a run straight to step 200
  * ends, field by field in the final snapshot and in every field and scalar
- * of the checkpoint, on every backend, restarted in the checkpoint's
- * directory and in another. A bad restart file (missing, not a checkpoint,
- * truncated, corrupt, other version, other dimension, other case, other
- * field set) is refused as bad input with a message saying which. A write
- * that fails for lack of space fails the run with a message and leaves the
- * last checkpoint intact. A stop request writes a checkpoint and a final
+ * of the checkpoint, with the same series rows, on every backend, restarted
+ * in the checkpoint's directory and in another: for the dam break and for a
+ * melting slab under a laser (thermal, laser and fluid modules). A bad
+ * restart file (missing, not a checkpoint, truncated, corrupt, other
+ * version, other dimension, other case, other field set, other precision)
+ * is refused as bad input with a message saying which. A write that fails
+ * for lack of space fails the run with a message and leaves the last
+ * checkpoint intact. A stop request writes a checkpoint and a final
  * snapshot; checkpoints also come every checkpoint_interval of wall time. */
 #include <hdf5.h>
+#include <inttypes.h>
 #include <signal.h>
 #include <stdio.h>
 #include <sys/resource.h>
@@ -17,6 +20,8 @@
 
 #include "case.h"
 #include "checkpoint.h"
+#include "hash.h"
+#include "series.h"
 #include "sim.h"
 #include "testing.h"
 
@@ -39,6 +44,27 @@
 
 static const char *dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_HEAD;
 static const char *dambreak_longer = "dimension: 2\nend_time: 0.5\n" DAMBREAK_HEAD;
+/* A 2D steel slab on a cold wall under a 1 kW beam (laser_slab_2d.yaml's
+ * geometry), radiating, by implicit midpoint: it melts from step 70 on, and
+ * the melt flows (the phase rule turns solids into fluid); output times
+ * fall between steps 100 and 200. */
+static const char *melting_slab =
+    "dimension: 2\n"
+    "domain: {min: [-1.0e-4, -2.0e-4], max: [1.1e-3, 8.0e-4]}\n"
+    "dx: 2.5e-5\n"
+    "end_time: 1.0e-3\n"
+    "output_interval: 2.0e-5\n"
+    "gravity: [0, -9.81]\n"
+    "fluid: {}\n"
+    "thermal: {integration: midpoint, radiation: true}\n"
+    "materials:\n"
+    "  - {name: steel, density: 8000, viscosity: 0.01, mushy_viscosity: 1, sound_speed: 10, specific_heat: 500,\n"
+    "     conductivity: 20, melting_temperature: 1700, melting_range: 100, latent_heat: 2.7e5, emissivity: 0.5}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: solid, material: steel, min: [0, 0], max: [1.0e-3, 5.0e-4], temperature: 400}\n"
+    "  - {shape: box, kind: wall, material: steel, min: [0, -7.5e-5], max: [1.0e-3, 0], temperature: 300}\n"
+    "laser: {power: 1000, radius: 1.0e-4, absorption_coefficient: 2000, start: [5.0e-4, 5.0e-4], "
+    "off_time: 1.0e-3}\n";
 static const char *cube_3d =
     "dimension: 3\n"
     "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
@@ -178,6 +204,61 @@ static void check_same_final_snapshot(const char *dir_a, int last_a, const char 
         H5Fclose(b);
 }
 
+/* Splits a CSV line in place; returns the number of cells. */
+static int split(char *line, char **cells, int max)
+{
+    int count = 0;
+    line[strcspn(line, "\n")] = '\0';
+    for (char *p = line; count < max; ++p) {
+        cells[count++] = p;
+        p = strchr(p, ',');
+        if (!p)
+            break;
+        *p = '\0';
+    }
+    return count;
+}
+
+/* Whether column c of series.csv depends on the wall clock. */
+static int wall_clock_column(int c)
+{
+    return !strcmp(amsph_series_columns[c].name, "wall_seconds") ||
+           !strcmp(amsph_series_columns[c].name, "particle_steps_per_second");
+}
+
+/* Every row of dir_a's series.csv is in dir_b's, cell for cell but the wall
+ * clock's; dir_b has `extra` more rows. */
+static void check_same_series(const char *dir_a, const char *dir_b, int extra)
+{
+    char path_a[600], path_b[600], row_a[4096], row_b[4096], *a[64], *b[64];
+    join(path_a, sizeof path_a, dir_a, "series.csv");
+    join(path_b, sizeof path_b, dir_b, "series.csv");
+    FILE *fa = fopen(path_a, "r"), *fb = fopen(path_b, "r");
+    CHECK(fa && fb, "cannot open %s or %s", path_a, path_b);
+    int rows_a = 0, rows_b = 0;
+    while (fa && fb && fgets(row_a, sizeof row_a, fa)) {
+        const int cells = split(row_a, a, 64);
+        int same = 0;
+        while (!same && fgets(row_b, sizeof row_b, fb)) {
+            ++rows_b;
+            same = split(row_b, b, 64) == cells && !strcmp(a[0], b[0]);
+        }
+        for (int c = 0; same && c < cells; ++c)
+            CHECK(wall_clock_column(c) || !strcmp(a[c], b[c]), "%s, step %s: %s is %s, straight %s", path_b, a[0],
+                  c < amsph_series_column_count ? amsph_series_columns[c].name : "?", b[c], a[c]);
+        CHECK(same, "%s lacks the row of step %s", path_b, a[0]);
+        ++rows_a;
+    }
+    while (fb && fgets(row_b, sizeof row_b, fb))
+        ++rows_b;
+    CHECK(rows_b == rows_a + extra, "%s has %d lines, %s %d (expected %d more)", path_b, rows_b, path_a, rows_a,
+          extra);
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+}
+
 static int count_text(const char *path, const char *text)
 {
     FILE *f = fopen(path, "r");
@@ -197,29 +278,42 @@ static void make_dir(char *dir, size_t size, const char *tag)
     CHECK(mkdtemp(dir) != NULL, "mkdtemp %s", dir);
 }
 
-static void test_bit_identical(int k)
+/* The case `text` run straight to step 200, and stopped at step 100 and
+ * restarted to 200 in the checkpoint's directory and in another, on
+ * backend k. */
+static void test_bit_identical(int k, const char *text, const char *tag)
 {
     amsph_backend *b = testing_backend(k);
     if (!b)
         return;
     amsph_case c;
-    parse(dambreak, &c);
-    char straight[128], stopped[128], elsewhere[128], from[600];
-    make_dir(straight, sizeof straight, "straight");
-    make_dir(stopped, sizeof stopped, "stopped");
-    make_dir(elsewhere, sizeof elsewhere, "elsewhere");
+    parse(text, &c);
+    char straight[128], stopped[128], elsewhere[128], from[600], label[64];
+    snprintf(label, sizeof label, "%s_straight", tag);
+    make_dir(straight, sizeof straight, label);
+    snprintf(label, sizeof label, "%s_stopped", tag);
+    make_dir(stopped, sizeof stopped, label);
+    snprintf(label, sizeof label, "%s_elsewhere", tag);
+    make_dir(elsewhere, sizeof elsewhere, label);
     join(from, sizeof from, stopped, "checkpoint.h5");
     CHECK_OK(run_case(b, &c, straight, 200, NULL, NULL));
     CHECK_OK(run_case(b, &c, stopped, 100, NULL, NULL));
     amsph_checkpoint half = {0};
-    if (!read_checkpoint(stopped, &half))
-        CHECK(saved_scalar(&half, "step") == 100, "stopped at step %lld", saved_scalar(&half, "step"));
+    if (!read_checkpoint(stopped, &half)) {
+        const amsph_host_particles *h = &half.state.particles;
+        int fluid = 0;
+        for (int i = 0; i < h->n; ++i)
+            fluid += ((const int *)h->data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID;
+        CHECK(saved_scalar(&half, "step") == 100 && fluid > 0, "%s: stopped at step %lld with %d fluid particles",
+              tag, saved_scalar(&half, "step"), fluid);
+    }
     const int before = half.run.snapshots.count;
     amsph_checkpoint_free(&half);
     CHECK_OK(run_case(b, &c, elsewhere, 200, from, NULL));
     CHECK_OK(run_case(b, &c, stopped, 200, from, NULL));
     check_same_checkpoint(straight, elsewhere);
     check_same_checkpoint(straight, stopped);
+    check_same_series(straight, stopped, 1); /* the stop's row */
 
     amsph_checkpoint a = {0}, d = {0};
     if (!read_checkpoint(straight, &a) && !read_checkpoint(stopped, &d)) {
@@ -308,6 +402,33 @@ static void write_without_shepard(const char *good, const char *path)
     amsph_checkpoint_free(&ck);
 }
 
+/* The checkpoint of `good` as a build of the other precision (AMSPH_DOUBLE)
+ * would label it, written to path: its HDF5 part with the root attribute
+ * real_bytes changed to the other size, sealed with a fresh trailer (the
+ * layout of checkpoint.h), so that only the precision is wrong. */
+static void write_other_precision(const char *good, const char *path)
+{
+    const long hdf5_bytes = file_size(good) - 64;
+    copy_altered(good, path, hdf5_bytes, -1, 0, NULL);
+    const int other = sizeof(amsph_real) == 4 ? 8 : 4;
+    hid_t file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t attr = file < 0 ? -1 : H5Aopen(file, "real_bytes", H5P_DEFAULT);
+    CHECK(attr >= 0 && H5Awrite(attr, H5T_NATIVE_INT, &other) >= 0, "cannot relabel %s", path);
+    if (attr >= 0)
+        H5Aclose(attr);
+    if (file >= 0)
+        H5Fclose(file);
+    static unsigned char bytes[1 << 22];
+    FILE *f = fopen(path, "r+b");
+    const size_t n = f ? fread(bytes, 1, sizeof bytes, f) : 0;
+    char trailer[64] = {0};
+    snprintf(trailer, sizeof trailer, "amsph checkpoint %d %zu %016" PRIx64 "\n", AMSPH_CHECKPOINT_VERSION, n,
+             amsph_hash(AMSPH_HASH_START, bytes, n));
+    CHECK(f && n > 0 && fwrite(trailer, 1, sizeof trailer, f) == sizeof trailer, "cannot seal %s", path);
+    if (f)
+        fclose(f);
+}
+
 static void test_refusals(amsph_backend *b, const char *dir)
 {
     char good[600], bad[600], snapshot[600];
@@ -328,6 +449,11 @@ static void test_refusals(amsph_backend *b, const char *dir)
     expect_refusal(b, good, dambreak_longer, "written for another case");
     write_without_shepard(good, bad);
     expect_refusal(b, bad, dambreak, "lacks field 'shepard'");
+    write_other_precision(good, bad);
+    expect_refusal(b, bad, dambreak, sizeof(amsph_real) == 4 ? "written by a build with 8-byte reals; this build "
+                                                               "has 4-byte reals (AMSPH_DOUBLE=OFF)"
+                                                             : "written by a build with 4-byte reals; this build "
+                                                               "has 8-byte reals (AMSPH_DOUBLE=ON)");
 }
 
 /* Sets the soft limit on the size of files this process writes. */
@@ -424,8 +550,10 @@ static void test_periodic_checkpoint(amsph_backend *b)
 
 int main(void)
 {
-    for (int k = 0; k < TESTING_BACKENDS; ++k)
-        test_bit_identical(k);
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        test_bit_identical(k, dambreak, "dambreak");
+        test_bit_identical(k, melting_slab, "slab");
+    }
     amsph_backend *b = testing_backend(0);
     amsph_case c;
     parse(dambreak, &c);

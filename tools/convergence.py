@@ -11,11 +11,17 @@ speed, largest over the output times; Morris, Fox & Zhu 1997), hydrostatic
 and dambreak, dambreak_3d (largest drift of the fluid volume sum m/rho);
 conduction, interface (largest temperature error over the output times,
 relative to the 1 K step; Fourier series and the erf solution) and stefan
-(largest relative error of the melting front against Neumann's solution).
+(largest relative error of the melting front against Neumann's solution);
+laser_slab (largest relative error of the absorbed power density against
+Beer-Lambert, alpha I0 exp(-2 r^2/r_l^2) exp(-alpha z), within 2 r_l of the
+axis and below the outer bin layers, with bins of dx and the beam moved half
+a spacing onto a particle column as in tests/test_laser.c; the extra column
+is the error of the enthalpy gained in series.csv against
+P (1 - exp(-alpha L)) t).
 The 1D strips (interface, stefan) are resized to 12 dx across, so that the
 periodic axis spans three kernel supports at every dx.
 Needs numpy and h5py (Debian: python3-numpy python3-h5py)."""
-import argparse, glob, math, os, re, subprocess, tempfile, time
+import argparse, csv, glob, math, os, re, subprocess, tempfile, time
 
 import h5py
 import numpy as np
@@ -120,6 +126,37 @@ def stefan_error(outdir, stefan=1.0):
     return worst
 
 
+SLAB = dict(power=100.0, radius=1e-4, alpha=2000.0, depth=5e-4, top=5e-4, centre=5e-4, on=1e-3)
+
+
+def laser_slab_profile(outdir):
+    """Largest relative error of laser_power against Beer-Lambert (first snapshot)."""
+    with h5py.File(os.path.join(outdir, "snap_000000.h5")) as f:
+        dx, x, power = f.attrs["dx"], f["position"][:], f["laser_power"][:]
+    axis = SLAB["centre"] - dx / 2
+    r2 = (x[:, 0] - axis) ** 2 + (x[:, 1] - axis) ** 2
+    z = SLAB["top"] - x[:, 2]
+    inside = (r2 <= (2 * SLAB["radius"]) ** 2) & (z >= dx) & (z <= SLAB["depth"] - dx)
+    peak = 2 * SLAB["power"] / (math.pi * SLAB["radius"] ** 2)
+    exact = SLAB["alpha"] * peak * np.exp(-2 * r2[inside] / SLAB["radius"] ** 2) * np.exp(-SLAB["alpha"] * z[inside])
+    return np.max(np.abs(power[inside] / exact - 1))
+
+
+def laser_slab_energy(outdir):
+    """Relative error of the enthalpy gained over the run against P (1 - e^-alpha L) t."""
+    with open(os.path.join(outdir, "series.csv")) as f:
+        rows = list(csv.DictReader(f))
+    gained = float(rows[-1]["enthalpy"]) - float(rows[0]["enthalpy"])
+    exact = SLAB["power"] * (1 - math.exp(-SLAB["alpha"] * SLAB["depth"])) * SLAB["on"]
+    return f"{gained / exact - 1:+.1e}"
+
+
+def laser_slab_text(text, dx):
+    """Bins of dx and the beam half a spacing across, onto a particle column."""
+    start = SLAB["centre"] - dx / 2
+    return re.sub(r"^  start: .*$", f"  start: [{start:g}, {start:g}, {SLAB['top']:g}]", text, flags=re.M)
+
+
 CASES = {
     "poiseuille": ("cases/validation/poiseuille_2d.yaml", lambda d: channel_error(d, poiseuille, 2.5e-5)),
     "couette": ("cases/validation/couette_2d.yaml", lambda d: channel_error(d, couette, 2.5e-5)),
@@ -129,15 +166,20 @@ CASES = {
     "conduction": ("cases/validation/conduction_2d.yaml", lambda d: temperature_error(d, square)),
     "interface": ("cases/validation/conduction_interface_1d.yaml", lambda d: temperature_error(d, interface)),
     "stefan": ("cases/validation/stefan_1d.yaml", stefan_error),
+    "laser_slab": ("cases/validation/laser_slab_3d.yaml", laser_slab_profile),
 }
+EXTRA = {"laser_slab": ("energy error", laser_slab_energy)}
+EDIT = {"laser_slab": laser_slab_text}
 STRIPS = ("interface", "stefan")
 
 
-def run(amsph, case_text, dx, backend, work, strip):
+def run(amsph, case_text, dx, backend, work, strip, edit):
     path = os.path.join(work, f"case_{dx}.yaml")
     text = re.sub(r"^dx: .*$", f"dx: {dx}", case_text, flags=re.M)
     if strip:
         text = text.replace(", 0.1]", f", {12 * dx:g}]")
+    if edit:
+        text = edit(text, dx)
     with open(path, "w") as f:
         f.write(text)
     outdir = os.path.join(work, f"out_{dx}")
@@ -162,18 +204,22 @@ def main():
     case_file, measure = CASES[args.case]
     with open(case_file) as f:
         text = f.read()
-    print(f"| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |")
-    print(f"|---|---|---|---|---|---|---|---|---|")
+    extra_name, extra = EXTRA.get(args.case, (None, None))
+    print(f"| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |"
+          + (f" {extra_name} |" if extra else ""))
+    print(f"|---|---|---|---|---|---|---|---|---|" + ("---|" if extra else ""))
     previous = None
     with tempfile.TemporaryDirectory() as work:
         for dx in sorted(args.dx, reverse=True):
-            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work, args.case in STRIPS)
+            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work, args.case in STRIPS,
+                                                 EDIT.get(args.case))
             error = measure(outdir)
             order = ""
             if previous and error > 0 and previous[1] > 0:
                 order = f"{math.log(previous[1] / error) / math.log(previous[0] / dx):.2f}"
             print(f"| {args.case} | {args.backend} | {dx:g} | {particles} | {steps} | {wall:.1f} | "
-                  f"{particles * steps / wall:.3g} | {error:.3e} | {order} |", flush=True)
+                  f"{particles * steps / wall:.3g} | {error:.3e} | {order} |"
+                  + (f" {extra(outdir)} |" if extra else ""), flush=True)
             previous = (dx, error)
 
 
