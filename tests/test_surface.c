@@ -7,6 +7,7 @@
  *   - Young-Laplace: a 2D droplet at rest holds sigma/R inside (erratum 1);
  *   - thermocapillary return flow in a closed layer: the profile
  *     u(y) = tau d / (4 mu) (3 (y/d)^2 - 2 y/d), tau = d sigma/dT dT/dx;
+ *   - a square patch relaxes to the circle of its area, at rest;
  *   - both backends give the same surface forces. */
 #include <math.h>
 
@@ -211,6 +212,54 @@ static void test_young_laplace(void)
     amsph_backend_destroy(b);
 }
 
+/* A 1 m x 1 m square patch (sigma = 10 N/m, no gravity, no damping)
+ * relaxes to a circle of radius 1/sqrt(pi): the outer radius, in 36
+ * sectors about the centre of mass (outermost particle + dx/2), within 1%
+ * of it with a spread below 0.2 dx, and the parasitic speed below 1e-3 of
+ * the capillary speed sqrt(sigma/(rho R)) = 0.133 m/s. */
+static void test_square_droplet(void)
+{
+    amsph_case c;
+    if (testing_load_case("square_droplet_2d.yaml", &c))
+        return;
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    amsph_host_particles h = {0};
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
+    if (!download(&s, &h)) {
+        enum { SECTORS = 36 };
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
+        const amsph_real *v = amsph_host_real(&h, AMSPH_FIELD_VELOCITY);
+        double centre[2] = {0.0, 0.0}, outer[SECTORS] = {0}, speed = 0.0;
+        for (int i = 0; i < h.n; ++i)
+            for (int d = 0; d < 2; ++d)
+                centre[d] += x[3 * i + d] / h.n;
+        for (int i = 0; i < h.n; ++i) {
+            const double dx = x[3 * i] - centre[0], dy = x[3 * i + 1] - centre[1];
+            int sector = (int)floor((atan2(dy, dx) + 3.14159265358979) / (2 * 3.14159265358979) * SECTORS);
+            sector = sector < 0 ? 0 : sector >= SECTORS ? SECTORS - 1 : sector;
+            outer[sector] = fmax(outer[sector], hypot(dx, dy) + 0.5 * c.dx);
+            speed = fmax(speed, hypot(v[3 * i], v[3 * i + 1]));
+        }
+        double mean = 0.0, spread = 0.0;
+        for (int k = 0; k < SECTORS; ++k)
+            mean += outer[k] / SECTORS;
+        for (int k = 0; k < SECTORS; ++k)
+            spread += (outer[k] - mean) * (outer[k] - mean) / SECTORS;
+        spread = sqrt(spread);
+        const double radius = 1.0 / sqrt(3.14159265358979);
+        printf("square droplet: outer radius %.4f m (circle %.4f), spread %.4f m, speed %.2e m/s\n",
+               mean, radius, spread, speed);
+        CHECK(fabs(mean - radius) < 0.01 * radius, "outer radius %g m, circle %g m", mean, radius);
+        CHECK(spread < 0.2 * c.dx, "the shape is not round: radius spread %g m", spread);
+        CHECK(speed < 1.33e-4, "parasitic speed %g m/s", speed);
+    }
+    amsph_host_free(&h);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 /* A liquid layer of depth d = 0.5 m in a closed box 2 m long under gravity,
  * with the temperature held at T = G x: the Marangoni stress
  * tau = d sigma/dT G drives the surface towards the cold end and the
@@ -350,5 +399,6 @@ int main(void)
     test_backends_agree();
     test_marangoni_return_flow();
     test_young_laplace();
+    test_square_droplet();
     return testing_finish();
 }
