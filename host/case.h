@@ -46,7 +46,7 @@ typedef struct {
 
 typedef struct {
     char name[AMSPH_NAME_LEN];
-    double density;   /* reference density rho0, kg/m^3, > 0 */
+    amsph_property density; /* reference density rho0(T), kg/m^3, > 0 (host/material.h) */
     double viscosity; /* dynamic viscosity (of the liquid), Pa s, >= 0 (default 0) */
     double sound_speed; /* artificial speed of sound c0, m/s, >= 0 (default 0: not set) */
     /* thermal module; the liquid_* ones default to the solid's */
@@ -117,6 +117,22 @@ typedef struct {
     double ambient_temperature; /* T_inf of the radiation, K, default 300 */
     int viscous_heating;        /* 1: tau : grad u heats the fluid (kernels/thermal.cl), default 0 */
 } amsph_thermal_settings;
+/* A temperature prescribed uniformly on every particle, for cases without
+ * the thermal module (host/thermal.h); on when the case has a
+ * `temperature_history:` section:
+ *   sine: T(t) = T_ref + A sin(2 pi f t)
+ *   ramp: T(t) = T_ref + A min(t / duration, 1) */
+typedef enum { AMSPH_HISTORY_SINE = 0, AMSPH_HISTORY_RAMP = 1 } amsph_history_form;
+
+typedef struct {
+    int enabled;
+    amsph_history_form form; /* default sine */
+    double reference;        /* T_ref, K, >= 0 */
+    double amplitude;        /* A, K */
+    double frequency;        /* f, Hz, > 0 (sine) */
+    double duration;         /* s, > 0 (ramp) */
+} amsph_temperature_history;
+
 typedef enum { AMSPH_ABSORPTION_VOLUMETRIC = 0, AMSPH_ABSORPTION_SURFACE = 1 } amsph_absorption;
 
 /* One leg of the beam's path: from the previous point straight to `to`. */
@@ -164,6 +180,7 @@ typedef struct {
     amsph_fluid_settings fluid;
     amsph_thermal_settings thermal;
     amsph_laser_settings laser;
+    amsph_temperature_history temperature_history;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];
     int n_geometry;

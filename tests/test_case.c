@@ -108,7 +108,7 @@ static const bad_case bad_cases[] = {
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
           "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, laser, "
-          "materials, geometry)"},
+          "temperature_history, materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -121,7 +121,8 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, fluid, thermal, laser, materials, geometry)"},
+          "backend, device, gravity, fluid, thermal, laser, temperature_history, materials, "
+          "geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
     {"duplicate key", BASE2 "dx: 0.02\n",
@@ -465,7 +466,7 @@ static void check_default_values(const amsph_case *c)
     expect(c->device == -1, "device default");
     expect(vec_is(c->gravity, 0, 0, 0), "gravity default");
     expect(c->n_materials == 1 && strcmp(c->materials[0].name, "water") == 0, "materials");
-    expect(near(c->materials[0].density, 1000), "density");
+    expect(c->materials[0].density.n == 1 && near(c->materials[0].density.v[0], 1000), "density");
     expect(c->materials[0].viscosity == 0 && c->materials[0].sound_speed == 0, "material defaults");
     const amsph_geometry *g = &c->geometry[0];
     expect(c->n_geometry == 1, "n_geometry");
@@ -564,10 +565,10 @@ static void check_full3d(const amsph_case *c)
     expect(c->backend == AMSPH_BACKEND_OPENCL && c->device == 2, "backend");
     expect(vec_is(c->gravity, 0, 0, -9.81), "gravity");
     expect(c->n_materials == 2, "n_materials");
-    expect(strcmp(c->materials[0].name, "water") == 0 && near(c->materials[0].density, 1000) &&
+    expect(strcmp(c->materials[0].name, "water") == 0 && near(c->materials[0].density.v[0], 1000) &&
                near(c->materials[0].viscosity, 1e-3) && near(c->materials[0].sound_speed, 20),
            "water");
-    expect(strcmp(c->materials[1].name, "oil") == 0 && near(c->materials[1].density, 900) &&
+    expect(strcmp(c->materials[1].name, "oil") == 0 && near(c->materials[1].density.v[0], 900) &&
                c->materials[1].viscosity == 0,
            "oil");
     expect(c->n_geometry == 4, "n_geometry");

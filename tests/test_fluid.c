@@ -173,10 +173,11 @@ static int diffusion_rates(const char *form, const char *heavy_density, double a
         const double x = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i];
         const int column = (int)(x / c.dx);
         const int material = column % 2;
+        const double rho0 = c.materials[material].density.v[0];
         ((int *)h.data[AMSPH_FIELD_MATERIAL])[i] = material;
-        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] = (amsph_real)(c.materials[material].density * c.dx * c.dx);
-        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] =
-            (amsph_real)(c.materials[material].density + amplitude * sin(2.0 * PI * x));
+        amsph_host_real(&h, AMSPH_FIELD_REFERENCE_DENSITY)[i] = (amsph_real)rho0;
+        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho0 * c.dx * c.dx);
+        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(rho0 + amplitude * sin(2.0 * PI * x));
     }
     amsph_particles_free(&s.particles);
     AMSPH_CHECK(amsph_particles_upload(b, &h, &s.particles));
