@@ -8,6 +8,7 @@
  *    "case.yaml:LINE: ..." message on one line.
  * Prints one line per failure and ends with "N passed, M failed". */
 #include "case.h"
+#include "material.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -229,6 +230,29 @@ static const bad_case bad_cases[] = {
      NAME ":17: 'thermal.viscous_heating' needs the fluid module (a 'fluid:' section)"},
     {"thermal integration unknown", BASE2 "thermal: {integration: implicit}\n",
      NAME ":17: 'thermal.integration' must be one of explicit, midpoint; got 'implicit'"},
+
+    /* rho0(T) and the temperature history */
+    {"density table without temperatures", HEAD2 "materials:\n  - name: water\n    density: [[300, 1000], [400, 900]]\n" GEO_BOX,
+     NAME ":9: material 'water' has a temperature-dependent 'density', but the particles have no temperature: "
+          "give the geometry blocks a 'temperature' or add a 'temperature_history'"},
+    {"density table value not positive", HEAD2 "materials:\n  - name: water\n    density: [[300, 1000], [400, 0]]\n" GEO_BOX,
+     NAME ":10: 'materials[0].density[1]' value must be > 0, got '0'"},
+    {"temperature history with thermal",
+     HEAD2 "materials:\n  - {name: water, density: 1, specific_heat: 1, conductivity: 1}\n" GEO_BOX
+           "    temperature: 300\ntemperature_history: {reference: 300, amplitude: 10, frequency: 1}\nthermal: {}\n",
+     NAME ":17: 'temperature_history' prescribes the temperature; it cannot be used with the thermal module (the "
+          "'thermal:' section on line 18)"},
+    {"temperature history with a block temperature",
+     BASE2 "    temperature: 300\ntemperature_history: {reference: 300, amplitude: 10, frequency: 1}\n",
+     NAME ":12: geometry[0] has a 'temperature', but 'temperature_history' (line 18) sets every particle's "
+          "temperature; remove one of them"},
+    {"temperature history below 0 K", BASE2 "temperature_history: {reference: 30, amplitude: -50, frequency: 1}\n",
+     NAME ":17: 'temperature_history.amplitude' (-50 K) takes the temperature to -20 K, below 0 K"},
+    {"ramp without duration", BASE2 "temperature_history: {form: ramp, reference: 300, amplitude: 10}\n",
+     NAME ":17: missing required key 'duration' in temperature_history (form 'ramp')"},
+    {"frequency of a ramp",
+     BASE2 "temperature_history: {form: ramp, reference: 300, amplitude: 10, duration: 1, frequency: 2}\n",
+     NAME ":17: 'temperature_history.frequency' does not apply to form 'ramp'"},
     {"layers negative", BASE2 "    layers: -2\n",
      NAME ":17: 'geometry[0].layers' must be >= 0, got -2"},
     {"domain max not above min", "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 0]\n",
@@ -657,6 +681,27 @@ static void check_tank2d(const amsph_case *c)
     expect(vec_is(g->center, 0, 0, 0) && vec_is(g->velocity, 1, 0, 0), "circle vectors");
 }
 
+/* A density table and a ramp of the temperature. */
+static const char isothermal2d[] = HEAD2 "materials:\n  - name: water\n    density: [[250, 1050], [350, 950]]\n" GEO_BOX
+    "temperature_history: {form: ramp, reference: 300, amplitude: -20, duration: 2}\n";
+
+static void check_isothermal2d(const amsph_case *c)
+{
+    const amsph_property *rho0 = &c->materials[0].density;
+    expect(rho0->n == 2 && near(rho0->T[0], 250) && near(rho0->v[0], 1050) && near(rho0->T[1], 350) &&
+               near(rho0->v[1], 950),
+           "density table");
+    expect(near(amsph_material_density(&c->materials[0], 320), 980) &&
+               near(amsph_material_density(&c->materials[0], 400), 950),
+           "rho0(T), constant beyond the table");
+    const amsph_temperature_history *h = &c->temperature_history;
+    expect(h->enabled && h->form == AMSPH_HISTORY_RAMP && near(h->reference, 300) && near(h->amplitude, -20) &&
+               near(h->duration, 2),
+           "history");
+    expect(near(amsph_temperature_history_at(h, 1), 290) && near(amsph_temperature_history_at(h, 5), 280),
+           "T(t) of the ramp");
+}
+
 typedef struct {
     const char *name;
     const char *text;
@@ -669,6 +714,7 @@ static const good_case good_cases[] = {
     {"every key, 3D, shuffled", full3d, check_full3d},
     {"2D tank and circle", tank2d, check_tank2d},
     {"2D laser, surface absorption, defaults", laser2d, check_laser2d},
+    {"2D density table, temperature ramp", isothermal2d, check_isothermal2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,
