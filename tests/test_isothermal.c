@@ -56,53 +56,6 @@ static double expected_volume(const amsph_host_particles *h, int i)
 
 /* ---- the measured quantities of each case, at one output time ----------- */
 
-/* Voronoi volume of the selected particles over their expected volume,
- * minus 1; *open counts selected particles whose cell is open. */
-static double voronoi_error(const amsph_host_particles *h, const double *area, const unsigned char *selected,
-                            int *open)
-{
-    double measured = 0.0, expected = 0.0;
-    *open = 0;
-    for (int i = 0; i < h->n; ++i) {
-        if (!selected[i])
-            continue;
-        if (area[i] < 0.0) {
-            ++*open;
-            continue;
-        }
-        measured += area[i];
-        expected += expected_volume(h, i);
-    }
-    return expected > 0.0 ? measured / expected - 1.0 : 0.0;
-}
-
-/* Centre of the fluid and the radius of the disc (2D) or ball (3D) of the
- * expected volume. */
-static void droplet_shape(const amsph_host_particles *h, int dim, double centre[3], double *radius)
-{
-    double volume = 0.0, count = 0.0;
-    centre[0] = centre[1] = centre[2] = 0.0;
-    for (int i = 0; i < h->n; ++i) {
-        if (!is_fluid(h, i))
-            continue;
-        volume += expected_volume(h, i);
-        for (int d = 0; d < 3; ++d)
-            centre[d] += position_of(h, i)[d];
-        ++count;
-    }
-    for (int d = 0; d < 3; ++d)
-        centre[d] /= count;
-    *radius = dim == 2 ? sqrt(volume / PI) : cbrt(3.0 * volume / (4.0 * PI));
-}
-
-static double distance_from(const amsph_real *x, const double centre[3])
-{
-    double r2 = 0.0;
-    for (int d = 0; d < 3; ++d)
-        r2 += ((double)x[d] - centre[d]) * ((double)x[d] - centre[d]);
-    return sqrt(r2);
-}
-
 /* The errors a case measures, each the largest magnitude over the output
  * times. */
 enum { MAX_ERRORS = 2 };
@@ -119,63 +72,97 @@ static void keep(errors *e, int k, double value)
 
 typedef int (*measure)(const amsph_case *c, const amsph_host_particles *h, errors *e);
 
-/* I1: the interior r < R/2 and the band 0.8 R < r < 0.9 R (Russell 2018
- * Fig. 4.4), R the radius of the disc (ball) of the expected volume. */
-static int measure_cycle(const amsph_case *c, const amsph_host_particles *h, errors *e)
+/* Which region (0 or 1) particle i belongs to, or -1. */
+typedef int (*region_of)(const amsph_case *c, const amsph_host_particles *h, int i, const double *shape);
+
+/* Voronoi volume of each region over its expected volume, minus 1, into
+ * e->worst[0] and [1]; particles with open cells are left out and counted
+ * in e->open. `shape` holds what region_of needs. */
+static int voronoi_errors(const amsph_case *c, const amsph_host_particles *h, region_of region,
+                          const double *shape, errors *e)
 {
-    double centre[3], radius, *area = malloc((size_t)h->n * sizeof *area);
-    unsigned char *interior = calloc((size_t)h->n, 1), *band = calloc((size_t)h->n, 1);
-    int status = !area || !interior || !band ? amsph_fail("out of memory") : 0;
-    if (!status)
-        status = voronoi_volumes(amsph_host_real(h, AMSPH_FIELD_POSITION), h->n, c->dim, VORONOI_REACH * c->dx, area)
-                     ? amsph_fail("out of memory")
-                     : 0;
-    if (!status) {
-        droplet_shape(h, c->dim, centre, &radius);
-        for (int i = 0; i < h->n; ++i) {
-            const double r = distance_from(position_of(h, i), centre) / radius;
-            interior[i] = r < 0.5;
-            band[i] = r > 0.8 && r < 0.9;
-        }
-        int open_interior, open_band;
-        keep(e, 0, voronoi_error(h, area, interior, &open_interior));
-        keep(e, 1, voronoi_error(h, area, band, &open_band));
-        e->open += open_interior + open_band;
+    double *volume = malloc((size_t)h->n * sizeof *volume);
+    if (!volume || voronoi_volumes(amsph_host_real(h, AMSPH_FIELD_POSITION), h->n, c->dim,
+                                   VORONOI_REACH * c->dx, volume)) {
+        free(volume);
+        return amsph_fail("out of memory for the Voronoi cells");
     }
-    free(area);
-    free(interior);
-    free(band);
-    return status;
+    double measured[MAX_ERRORS] = {0.0, 0.0}, expected[MAX_ERRORS] = {0.0, 0.0};
+    for (int i = 0; i < h->n; ++i) {
+        const int k = region(c, h, i, shape);
+        if (k < 0)
+            continue;
+        if (volume[i] < 0.0) {
+            ++e->open;
+            continue;
+        }
+        measured[k] += volume[i];
+        expected[k] += expected_volume(h, i);
+    }
+    for (int k = 0; k < MAX_ERRORS; ++k)
+        if (expected[k] > 0.0)
+            keep(e, k, measured[k] / expected[k] - 1.0);
+    free(volume);
+    return 0;
 }
 
-/* I3: the lower fluid (material 0) whole, bounded by walls and the upper
- * fluid; the upper fluid (material 1) more than 3 spacings below its top. */
+/* Centre of the fluid and the radius of the disc (2D) or ball (3D) of the
+ * expected volume: shape[0..2], shape[3]. */
+static void droplet_shape(const amsph_host_particles *h, int dim, double shape[4])
+{
+    double volume = 0.0, count = 0.0;
+    shape[0] = shape[1] = shape[2] = 0.0;
+    for (int i = 0; i < h->n; ++i) {
+        if (!is_fluid(h, i))
+            continue;
+        volume += expected_volume(h, i);
+        for (int d = 0; d < 3; ++d)
+            shape[d] += position_of(h, i)[d];
+        ++count;
+    }
+    for (int d = 0; d < 3; ++d)
+        shape[d] /= count;
+    shape[3] = dim == 2 ? sqrt(volume / PI) : cbrt(3.0 * volume / (4.0 * PI));
+}
+
+/* I1: the interior r < R/2 (0) and the band 0.8 R < r < 0.9 R (1) (Russell
+ * 2018 Fig. 4.4), R the radius of the disc (ball) of the expected volume. */
+static int droplet_region(const amsph_case *c, const amsph_host_particles *h, int i, const double *shape)
+{
+    (void)c;
+    double r2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+        r2 += ((double)position_of(h, i)[d] - shape[d]) * ((double)position_of(h, i)[d] - shape[d]);
+    const double r = sqrt(r2) / shape[3];
+    return r < 0.5 ? 0 : r > 0.8 && r < 0.9 ? 1 : -1;
+}
+
+static int measure_cycle(const amsph_case *c, const amsph_host_particles *h, errors *e)
+{
+    double shape[4];
+    droplet_shape(h, c->dim, shape);
+    return voronoi_errors(c, h, droplet_region, shape, e);
+}
+
+/* I3: the lower fluid (material 0, region 0) whole, bounded by walls and
+ * the upper fluid; the upper fluid (material 1, region 1) more than 3
+ * spacings below its top (shape[0]). */
+static int column_region(const amsph_case *c, const amsph_host_particles *h, int i, const double *shape)
+{
+    if (!is_fluid(h, i))
+        return -1;
+    if (material_of(h, i) == 0)
+        return 0;
+    return position_of(h, i)[1] < shape[0] - 3.0 * c->dx ? 1 : -1;
+}
+
 static int measure_column(const amsph_case *c, const amsph_host_particles *h, errors *e)
 {
-    double *area = malloc((size_t)h->n * sizeof *area), top = -INFINITY;
-    unsigned char *lower = calloc((size_t)h->n, 1), *upper = calloc((size_t)h->n, 1);
-    int status = !area || !lower || !upper ? amsph_fail("out of memory") : 0;
-    if (!status)
-        status = voronoi_volumes(amsph_host_real(h, AMSPH_FIELD_POSITION), h->n, c->dim, VORONOI_REACH * c->dx, area)
-                     ? amsph_fail("out of memory")
-                     : 0;
-    if (!status) {
-        for (int i = 0; i < h->n; ++i)
-            if (is_fluid(h, i) && material_of(h, i) == 1)
-                top = fmax(top, position_of(h, i)[1]);
-        for (int i = 0; i < h->n; ++i) {
-            lower[i] = is_fluid(h, i) && material_of(h, i) == 0;
-            upper[i] = is_fluid(h, i) && material_of(h, i) == 1 && position_of(h, i)[1] < top - 3.0 * c->dx;
-        }
-        int open_lower, open_upper;
-        keep(e, 0, voronoi_error(h, area, lower, &open_lower));
-        keep(e, 1, voronoi_error(h, area, upper, &open_upper));
-        e->open += open_lower + open_upper;
-    }
-    free(area);
-    free(lower);
-    free(upper);
-    return status;
+    double top = -INFINITY;
+    for (int i = 0; i < h->n; ++i)
+        if (is_fluid(h, i) && material_of(h, i) == 1)
+            top = fmax(top, position_of(h, i)[1]);
+    return voronoi_errors(c, h, column_region, &top, e);
 }
 
 /* I4: the particle-scale pressure noise, the RMS over the fluid particles
@@ -209,7 +196,7 @@ static int measure_sinking(const amsph_case *c, const amsph_host_particles *h, e
         double mean = 0.0;
         for (int k = 0; k < n_near; ++k) {
             mixed |= !is_fluid(h, near[k]) || material_of(h, near[k]) != material_of(h, a);
-            mean += p[near[k]] / n_near;
+            mean += (double)p[near[k]] / n_near;
         }
         if (mixed || n_near < 5)
             continue;
@@ -527,9 +514,11 @@ static int sweep(int argc, char **argv)
         for (int v = 0; v <= sinking; ++v) {
             errors e;
             run_record r;
-            if (run_case(k, dx, 0.0, v ? DIFFUSION_NONE : -1, &e, &r) && !r.stopped) {
-                fprintf(stderr, "dx %g: %s\n", dx, amsph_last_error());
-                return 1;
+            if (run_case(k, dx, 0.0, v ? DIFFUSION_NONE : -1, &e, &r)) {
+                fprintf(stderr, "%s%s, dx %g: %s\n", cases[k].name, v ? " (no delta-SPH)" : "", dx,
+                        amsph_last_error());
+                if (!r.stopped)
+                    return 1;
             }
             print_row(k, v ? " (no delta-SPH)" : "", dx, &e, &r);
         }
