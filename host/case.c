@@ -43,6 +43,7 @@ _Static_assert(sizeof(amsph_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_absorption) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_material_preset) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_history_form) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
@@ -54,14 +55,15 @@ typedef enum {
     SEC_SURFACE,
     SEC_LASER,
     SEC_LASER_PATH,
+    SEC_HISTORY,
     SEC_MATERIAL,
     SEC_GEOMETRY
 } section_id;
 
 /* How each section is named in the key reference. */
-static const char *const section_prefix[] = {"",         "domain.", "fluid.",        "thermal.",
-                                             "surface.", "laser.",  "laser.path[].", "materials[].",
-                                             "geometry[]."};
+static const char *const section_prefix[] = {
+    "",       "domain.",       "fluid.",       "thermal.", "surface.", "laser.", "laser.path[].",
+    "temperature_history.", "materials[].", "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -134,6 +136,8 @@ static const choice slip_choices[] = {
 static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLUMETRIC, 0},
                                             {"surface", AMSPH_ABSORPTION_SURFACE, 0},
                                             {NULL, 0, 0}};
+static const choice history_choices[] = {
+    {"sine", AMSPH_HISTORY_SINE, 0}, {"ramp", AMSPH_HISTORY_RAMP, 0}, {NULL, 0, 0}};
 
 static const choice preset_choices[] = {{"none", AMSPH_PRESET_NONE, 0},
                                         {"steel_304", AMSPH_PRESET_STEEL_304, 0},
@@ -182,6 +186,8 @@ static const preset presets[] = {
 #define ROUND_SHAPES (VARIANT_BIT(AMSPH_SHAPE_CIRCLE) | VARIANT_BIT(AMSPH_SHAPE_SPHERE) | CYLINDER_ONLY)
 #define VOLUMETRIC_ONLY VARIANT_BIT(AMSPH_ABSORPTION_VOLUMETRIC)
 #define SURFACE_ONLY VARIANT_BIT(AMSPH_ABSORPTION_SURFACE)
+#define SINE_ONLY VARIANT_BIT(AMSPH_HISTORY_SINE)
+#define RAMP_ONLY VARIANT_BIT(AMSPH_HISTORY_RAMP)
 
 typedef struct {
     section_id section;
@@ -207,6 +213,7 @@ typedef struct {
 #define SURFACE(field) offsetof(amsph_case, surface.field)
 #define LASER(field) offsetof(amsph_case, laser.field)
 #define SEGMENT(field) offsetof(amsph_laser_segment, field)
+#define HISTORY(field) offsetof(amsph_case, temperature_history.field)
 #define MAT(field) offsetof(amsph_material, field)
 #define GEO(field) offsetof(amsph_geometry, field)
 
@@ -397,6 +404,26 @@ static const key_spec specs[] = {
      .def = 3, .variants = VOLUMETRIC_ONLY, .offset = LASER(window),
      .doc = "The bin columns reach this many radii r_l from the axis (the beam power beyond: "
             "below exp(-2 window²))"},
+    {.section = SEC_TOP, .key = "temperature_history", .type = VT_MAP, .sub = SEC_HISTORY,
+     .rule = "not with `thermal` or `geometry[].temperature`",
+     .doc = "A temperature prescribed on every particle, uniform in space, for cases without the "
+            "thermal module (it drives rho0(T)); present: on"},
+    {.section = SEC_HISTORY, .key = "form", .type = VT_CHOICE, .choices = history_choices,
+     .flags = F_SELECTS_VARIANT, .def = AMSPH_HISTORY_SINE, .offset = HISTORY(form),
+     .doc = "`sine`: T = reference + amplitude sin(2π frequency t); `ramp`: T = reference + "
+            "amplitude min(t / duration, 1)"},
+    {.section = SEC_HISTORY, .key = "reference", .type = VT_NUMBER, .unit = "K",
+     .flags = F_REQUIRED | F_FROM_LO, .lo = 0, .offset = HISTORY(reference),
+     .doc = "Temperature at t = 0"},
+    {.section = SEC_HISTORY, .key = "amplitude", .type = VT_NUMBER, .unit = "K", .flags = F_REQUIRED,
+     .offset = HISTORY(amplitude), .rule = "the temperature stays >= 0 K",
+     .doc = "Amplitude of the sine, or the change over the ramp"},
+    {.section = SEC_HISTORY, .key = "frequency", .type = VT_NUMBER, .unit = "Hz",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = SINE_ONLY, .offset = HISTORY(frequency),
+     .doc = "Frequency of the sine"},
+    {.section = SEC_HISTORY, .key = "duration", .type = VT_NUMBER, .unit = "s",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = RAMP_ONLY, .offset = HISTORY(duration),
+     .doc = "Time over which the ramp changes the temperature; constant afterwards"},
     {.section = SEC_TOP, .key = "materials", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_MATERIALS, .sub = SEC_MATERIAL,
      .doc = "Materials, referred to by name from `geometry`"},
@@ -406,9 +433,12 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "preset", .type = VT_CHOICE, .choices = preset_choices,
      .def = AMSPH_PRESET_NONE, .offset = MAT(preset),
      .doc = "A named material (the presets below) that gives the keys this material does not"},
-    {.section = SEC_MATERIAL, .key = "density", .type = VT_NUMBER, .unit = "kg/m³",
+    {.section = SEC_MATERIAL, .key = "density", .type = VT_PROPERTY, .unit = "kg/m³",
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = MAT(density),
-     .doc = "Reference density"},
+     .rule = "a table needs particle temperatures (`geometry[].temperature` or `temperature_history`)",
+     .doc = "Reference density rho0 of the equation of state: a number, or a list of [T, rho0] pairs "
+            "(isothermally incompressible fluid, Russell Eq. 3.52: the linear law rho_ref - alpha_T "
+            "(T - T_ref) is a two-point table; constant beyond the table's ends)"},
     {.section = SEC_MATERIAL, .key = "viscosity", .type = VT_NUMBER, .unit = "Pa·s",
      .flags = F_FROM_LO, .lo = 0, .offset = MAT(viscosity), .doc = "Dynamic viscosity"},
     {.section = SEC_MATERIAL, .key = "sound_speed", .type = VT_NUMBER, .unit = "m/s",
@@ -510,10 +540,11 @@ static const key_spec specs[] = {
      .offset = GEO(velocity), .doc = "Initial velocity"},
     {.section = SEC_GEOMETRY, .key = "temperature", .type = VT_NUMBER, .unit = "K",
      .flags = F_FROM_LO | F_NO_DEFAULT, .lo = 0, .offset = GEO(temperature),
-     .doc = "Initial temperature"},
+     .rule = "not with `temperature_history`", .doc = "Initial temperature"},
     {.section = SEC_GEOMETRY, .key = "hydrostatic", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = GEO(hydrostatic),
-     .doc = "Fluid starts in hydrostatic balance below the block's top (against gravity)"},
+     .doc = "Fluid starts in hydrostatic balance under the hydrostatic fluid above it in its lattice "
+            "column (stacked blocks of different density too)"},
 };
 /* clang-format on */
 
@@ -532,6 +563,7 @@ typedef struct {
     size_t surface_line;                       /* where the surface section starts */
     yaml_node_t preset_key[MAX_PRESET_KEYS];   /* the keys and values a preset fills into */
     yaml_node_t preset_value[MAX_PRESET_KEYS]; /* the material being read */
+    size_t history_line;                       /* where the temperature history starts */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -1347,8 +1379,12 @@ static int finish_thermal(parser *p)
     return 0;
 }
 
+/* Every particle has a temperature: every block gives one, or the history
+ * prescribes it. */
 static int has_temperatures(const amsph_case *c)
 {
+    if (c->temperature_history.enabled)
+        return 1;
     for (int k = 0; k < c->n_geometry; k++)
         if (!c->geometry[k].has_temperature)
             return 0;
@@ -1399,12 +1435,52 @@ static int finish_surface(parser *p)
     return 0;
 }
 
+/* The temperature history sets every particle's temperature: no thermal
+ * module and no initial temperatures beside it. */
+static int finish_history(parser *p)
+{
+    const amsph_case *c = p->c;
+    if (c->thermal.enabled)
+        return fail(p, p->history_line,
+                    "'temperature_history' prescribes the temperature; it cannot be used with the "
+                    "thermal module (the 'thermal:' section on line %zu)",
+                    p->thermal_line);
+    for (int k = 0; k < c->n_geometry; k++)
+        if (c->geometry[k].has_temperature)
+            return fail(p, (size_t)c->geometry[k].line,
+                        "geometry[%d] has a 'temperature', but 'temperature_history' (line %zu) sets "
+                        "every particle's temperature; remove one of them",
+                        k, p->history_line);
+    return 0;
+}
+
+/* A table rho0(T) needs the particles' temperatures. */
+static int check_density_tables(parser *p)
+{
+    const amsph_case *c = p->c;
+    int temperatures = c->temperature_history.enabled;
+    for (int k = 0; k < c->n_geometry; k++)
+        temperatures |= c->geometry[k].has_temperature;
+    for (int i = 0; i < c->n_materials && !temperatures; i++)
+        if (c->materials[i].density.n >= 2)
+            return fail(p, p->material_line[i],
+                        "material '%s' has a temperature-dependent 'density', but the particles have "
+                        "no temperature: give the geometry blocks a 'temperature' or add a "
+                        "'temperature_history'",
+                        c->materials[i].name);
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
     if (p->c->surface.enabled && finish_surface(p))
+        return CASE_ERROR;
+    if (p->c->temperature_history.enabled && finish_history(p))
+        return CASE_ERROR;
+    if (check_density_tables(p))
         return CASE_ERROR;
     if (!p->c->fluid.enabled)
         return 0;
@@ -1487,6 +1563,21 @@ static int finish_laser(parser *p, const scope *sc)
     return 0;
 }
 
+/* The prescribed temperature stays at or above 0 K. */
+static int finish_temperature_history(parser *p, const scope *sc)
+{
+    amsph_temperature_history *h = &p->c->temperature_history;
+    h->enabled = 1;
+    p->history_line = line_of(sc->map);
+    const double lowest = h->form == AMSPH_HISTORY_SINE ? h->reference - fabs(h->amplitude)
+                                                        : h->reference + fmin(h->amplitude, 0.0);
+    if (lowest < 0)
+        return fail(p, line_of(found(sc, "amplitude")),
+                    "'temperature_history.amplitude' (%g K) takes the temperature to %g K, below 0 K",
+                    h->amplitude, lowest);
+    return 0;
+}
+
 static int finish_scope(parser *p, const scope *sc)
 {
     switch (sc->section) {
@@ -1505,6 +1596,8 @@ static int finish_scope(parser *p, const scope *sc)
         return finish_laser(p, sc);
     case SEC_LASER_PATH:
         return 0;
+    case SEC_HISTORY:
+        return finish_temperature_history(p, sc);
     case SEC_DOMAIN:
         return check_corners(p, sc, p->c->domain_min, p->c->domain_max);
     case SEC_MATERIAL:

@@ -54,7 +54,7 @@ typedef enum {
 typedef struct {
     char name[AMSPH_NAME_LEN];
     int preset;       /* amsph_material_preset whose values fill the keys not given */
-    double density;   /* reference density rho0, kg/m^3, > 0 */
+    amsph_property density; /* reference density rho0(T), kg/m^3, > 0 (host/material.h) */
     double viscosity; /* dynamic viscosity (of the liquid), Pa s, >= 0 (default 0) */
     double sound_speed; /* artificial speed of sound c0, m/s, >= 0 (default 0: not set) */
     /* thermal module; the liquid_* ones default to the solid's */
@@ -148,6 +148,22 @@ typedef struct {
     double min_shepard;   /* particles with a Shepard sum below this carry no surface force */
 } amsph_surface_settings;
 
+/* A temperature prescribed uniformly on every particle, for cases without
+ * the thermal module (host/thermal.h); on when the case has a
+ * `temperature_history:` section:
+ *   sine: T(t) = T_ref + A sin(2 pi f t)
+ *   ramp: T(t) = T_ref + A min(t / duration, 1) */
+typedef enum { AMSPH_HISTORY_SINE = 0, AMSPH_HISTORY_RAMP = 1 } amsph_history_form;
+
+typedef struct {
+    int enabled;
+    amsph_history_form form; /* default sine */
+    double reference;        /* T_ref, K, >= 0 */
+    double amplitude;        /* A, K */
+    double frequency;        /* f, Hz, > 0 (sine) */
+    double duration;         /* s, > 0 (ramp) */
+} amsph_temperature_history;
+
 typedef enum { AMSPH_ABSORPTION_VOLUMETRIC = 0, AMSPH_ABSORPTION_SURFACE = 1 } amsph_absorption;
 
 /* One leg of the beam's path: from the previous point straight to `to`. */
@@ -196,6 +212,7 @@ typedef struct {
     amsph_thermal_settings thermal;
     amsph_surface_settings surface;
     amsph_laser_settings laser;
+    amsph_temperature_history temperature_history;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];
     int n_geometry;

@@ -4,6 +4,28 @@
 #include <string.h>
 
 #include "error.h"
+#include "material.h"
+
+/* rho0 of every particle at its initial temperature; without temperatures
+ * the case's densities are constants (checked by the case parser). */
+static void set_reference_density(const amsph_case *c, amsph_host_particles *h)
+{
+    const amsph_real *temperature = amsph_host_real(h, AMSPH_FIELD_TEMPERATURE);
+    const int *material = h->data[AMSPH_FIELD_MATERIAL];
+    amsph_real *rho0 = amsph_host_real(h, AMSPH_FIELD_REFERENCE_DENSITY);
+    for (int i = 0; i < h->n; ++i)
+        rho0[i] = (amsph_real)amsph_material_density(&c->materials[material[i]], temperature ? temperature[i] : 0.0);
+}
+
+/* Does rho0 change during the run: a material's rho0 depends on the
+ * temperature, and the temperature changes (thermal module or history)? */
+static int reference_density_varies(const amsph_case *c)
+{
+    int varies = 0;
+    for (int m = 0; m < c->n_materials; ++m)
+        varies |= amsph_material_density_varies(&c->materials[m]);
+    return varies && (c->thermal.enabled || c->temperature_history.enabled);
+}
 
 int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
 {
@@ -24,6 +46,9 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->clamp_negative_pressure = f->clamp_negative_pressure;
     p->tensile_correction = (amsph_real)f->tensile_correction;
     p->dx = (amsph_real)s->config.dx;
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
+    set_reference_density(&s->config, h);
+    s->reference_density_varies = reference_density_varies(&s->config);
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
@@ -39,12 +64,21 @@ static amsph_arg field(amsph_sim *s, amsph_field_id f)
     return amsph_arg_buffer(s->particles.field[f]);
 }
 
+int amsph_fluid_reference_density(amsph_sim *s)
+{
+    const int n = s->particles.n;
+    return AMSPH_LAUNCH(s->backend, "update_reference_density", n, field(s, AMSPH_FIELD_MATERIAL),
+                        field(s, AMSPH_FIELD_TEMPERATURE), amsph_arg_int(n), amsph_arg_buffer(s->materials),
+                        field(s, AMSPH_FIELD_REFERENCE_DENSITY));
+}
+
 int amsph_fluid_density(amsph_sim *s, double dt)
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
@@ -65,13 +99,14 @@ int amsph_fluid_forces(amsph_sim *s)
     const amsph_arg params = amsph_arg_bytes(&s->fluid, sizeof s->fluid);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "equation_of_state", n, field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_DENSITY),
-                             amsph_arg_int(n), amsph_arg_buffer(s->materials), params,
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), amsph_arg_buffer(s->materials), params,
                              field(s, AMSPH_FIELD_PRESSURE)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "wall_state", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
-                             amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
-                             amsph_arg_buffer(s->materials), params, field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), grid,
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
+                             params, field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
@@ -84,14 +119,17 @@ int amsph_fluid_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_ACCELERATION));
 }
 
-/* Largest speed of sound and kinematic viscosity over the materials. */
+/* Largest speed of sound and kinematic viscosity (with the smallest rho0)
+ * over the materials. */
 static void material_extremes(const amsph_case *c, double *c0, double *nu)
 {
     *c0 = 0.0;
     *nu = 0.0;
     for (int m = 0; m < c->n_materials; ++m) {
+        double rho_min, rho_max;
+        amsph_material_density_bounds(&c->materials[m], &rho_min, &rho_max);
         *c0 = fmax(*c0, c->materials[m].sound_speed);
-        *nu = fmax(*nu, c->materials[m].viscosity / c->materials[m].density);
+        *nu = fmax(*nu, c->materials[m].viscosity / rho_min);
     }
 }
 

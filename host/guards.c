@@ -31,13 +31,12 @@ static int first_with_code(amsph_sim *s, int code, int *index)
 
 static int report(amsph_sim *s, int code, int i)
 {
-    amsph_real x[3], rho, nearest;
+    amsph_real x[3], rho, rho0, nearest;
     unsigned id;
-    int material;
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_POSITION, i, x));
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_DENSITY, i, &rho));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_REFERENCE_DENSITY, i, &rho0));
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_ID, i, &id));
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_MATERIAL, i, &material));
     AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof nearest, sizeof nearest, &nearest));
     const amsph_fluid_settings *f = &s->config.fluid;
     const double dx = s->config.dx;
@@ -52,10 +51,9 @@ static int report(amsph_sim *s, int code, int i)
         return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest "
                           "neighbour (limit %.3g dx)",
                           where, (double)nearest / dx, f->min_pair_distance);
-    const double rho0 = s->config.materials[material].density;
     return amsph_fail("guard 'density error' failed: %s has density %.6g kg/m^3, %.3g%% from "
                       "rho0 = %.6g (limit %.3g%%); raise sound_speed or max_density_error",
-                      where, (double)rho, 100.0 * ((double)rho - rho0) / rho0, rho0,
+                      where, (double)rho, 100.0 * ((double)rho - rho0) / rho0, (double)rho0,
                       100.0 * f->max_density_error);
 }
 
@@ -66,10 +64,9 @@ int amsph_guards_check(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "guard_check", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_MATERIAL]), amsph_arg_buffer(s->closest),
-                             amsph_arg_int(p->n), amsph_arg_buffer(s->materials),
-                             amsph_arg_real(f->min_pair_distance * s->config.dx),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_REFERENCE_DENSITY]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_buffer(s->closest),
+                             amsph_arg_int(p->n), amsph_arg_real(f->min_pair_distance * s->config.dx),
                              amsph_arg_real(f->max_density_error), amsph_arg_buffer(s->work)));
     double worst = 0.0;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &worst));

@@ -21,6 +21,7 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(ACCELERATION, "acceleration", AMSPH_TYPE_REAL, 3, "m/s^2", 0)                                \
     X(DENSITY, "density", AMSPH_TYPE_REAL, 1, "kg/m^3", AMSPH_FIELD_OUTPUT)                        \
     X(PRESSURE, "pressure", AMSPH_TYPE_REAL, 1, "Pa", AMSPH_FIELD_OUTPUT)                          \
+    X(REFERENCE_DENSITY, "reference_density", AMSPH_TYPE_REAL, 1, "kg/m^3", AMSPH_FIELD_OUTPUT)    \
     X(MASS, "mass", AMSPH_TYPE_REAL, 1, "kg", AMSPH_FIELD_OUTPUT)                                  \
     X(KIND, "kind", AMSPH_TYPE_INT, 1, "1", AMSPH_FIELD_OUTPUT)                                    \
     X(MATERIAL, "material", AMSPH_TYPE_INT, 1, "1", AMSPH_FIELD_OUTPUT)                            \

@@ -1,9 +1,11 @@
 #include "scene.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "error.h"
+#include "material.h"
 
 /* Lattice of spacing dx over [lo, hi) per axis, points at cell centres. */
 typedef struct {
@@ -93,23 +95,33 @@ static int check_inside_domain(const amsph_case *c, const amsph_geometry *g, con
     return 0;
 }
 
+/* A particle's temperature at t = 0: its block's, or the prescribed history's. */
+static double initial_temperature(const amsph_case *c, const amsph_geometry *g)
+{
+    return c->temperature_history.enabled ? amsph_temperature_history_at(&c->temperature_history, 0.0)
+                                          : g->temperature;
+}
+
+/* Density rho0(T) at the initial temperature and mass rho0 dx^d: each
+ * particle fills the lattice volume dx^d. */
 static void set_particle(const amsph_case *c, const amsph_geometry *g, const double x[3],
                          amsph_host_particles *h, int i)
 {
-    const amsph_material *m = &c->materials[g->material];
+    const double temperature = initial_temperature(c, g);
+    const double rho0 = amsph_material_density(&c->materials[g->material], temperature);
     amsph_real *pos = amsph_host_real(h, AMSPH_FIELD_POSITION);
     amsph_real *vel = amsph_host_real(h, AMSPH_FIELD_VELOCITY);
     for (int d = 0; d < 3; ++d) {
         pos[3 * i + d] = (amsph_real)x[d];
         vel[3 * i + d] = (amsph_real)g->velocity[d];
     }
-    amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)m->density;
-    amsph_host_real(h, AMSPH_FIELD_MASS)[i] = (amsph_real)(m->density * pow(c->dx, c->dim));
+    amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)rho0;
+    amsph_host_real(h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho0 * pow(c->dx, c->dim));
     ((int *)h->data[AMSPH_FIELD_KIND])[i] = (int)g->kind;
     ((int *)h->data[AMSPH_FIELD_MATERIAL])[i] = g->material;
     ((unsigned *)h->data[AMSPH_FIELD_ID])[i] = (unsigned)i;
     if (h->data[AMSPH_FIELD_TEMPERATURE])
-        amsph_host_real(h, AMSPH_FIELD_TEMPERATURE)[i] = (amsph_real)g->temperature;
+        amsph_host_real(h, AMSPH_FIELD_TEMPERATURE)[i] = (amsph_real)temperature;
 }
 
 /* Visits the lattice points of block g: counts them, or (h != NULL) checks
@@ -136,36 +148,143 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, amsph_host_
     return 0;
 }
 
-/* Hydrostatic initial density of the block's particles [first, h->n): with
- * depth d below the block's highest particle (along -g) plus dx/2,
- *   p = rho0 |g| d,  rho = rho0 + p / c0^2 (the equation of state),
- * and mass rho dx^d, so that the particle volume m / rho stays dx^d. */
-static void set_hydrostatic(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h,
-                            int first)
+/* A particle of a hydrostatic block, for the column pass below. */
+typedef struct {
+    double across[2]; /* coordinates across g, m */
+    double height;    /* along -g, m */
+    long long group;  /* band of equal across[0], then column of equal across[0..1] */
+    int index;
+} column_entry;
+
+static int compare_doubles(double a, double b)
+{
+    return (a > b) - (a < b);
+}
+
+static int by_across0(const void *pa, const void *pb)
+{
+    const column_entry *a = pa, *b = pb;
+    return compare_doubles(a->across[0], b->across[0]);
+}
+
+static int by_band_across1(const void *pa, const void *pb)
+{
+    const column_entry *a = pa, *b = pb;
+    return a->group != b->group ? (a->group > b->group) - (a->group < b->group)
+                                : compare_doubles(a->across[1], b->across[1]);
+}
+
+/* By column, and from the top down within a column. */
+static int by_column_top_down(const void *pa, const void *pb)
+{
+    const column_entry *a = pa, *b = pb;
+    return a->group != b->group ? (a->group > b->group) - (a->group < b->group)
+                                : compare_doubles(b->height, a->height);
+}
+
+/* Numbers the groups of sorted entries: a new one where the group before
+ * changes or across[axis] moves on by more than half a spacing from the
+ * group's first entry (points of a lattice column share their coordinates
+ * across g; neighbouring columns are a spacing apart). */
+static void number_groups(column_entry *e, int count, int axis, double dx)
+{
+    long long group = -1, previous = -1;
+    double start = 0.0;
+    for (int k = 0; k < count; ++k) {
+        if (k == 0 || e[k].group != previous || e[k].across[axis] - start > 0.5 * dx) {
+            ++group;
+            start = e[k].across[axis];
+        }
+        previous = e[k].group;
+        e[k].group = group;
+    }
+}
+
+/* Unit vectors u, v across the unit vector e (v = e x u). */
+static void across(const double e[3], double u[3], double v[3])
+{
+    int axis = 0; /* the axis least aligned with e */
+    for (int d = 1; d < 3; ++d)
+        if (fabs(e[d]) < fabs(e[axis]))
+            axis = d;
+    double norm = 0.0;
+    for (int d = 0; d < 3; ++d) {
+        u[d] = (d == axis) - e[axis] * e[d];
+        norm += u[d] * u[d];
+    }
+    for (int d = 0; d < 3; ++d)
+        u[d] /= sqrt(norm);
+    v[0] = e[1] * u[2] - e[2] * u[1];
+    v[1] = e[2] * u[0] - e[0] * u[2];
+    v[2] = e[0] * u[1] - e[1] * u[0];
+}
+
+/* The entry of the particle at x: its coordinates across and along `up`. */
+static column_entry column_entry_of(const amsph_real *x, const double up[3], int index)
+{
+    double u[3], v[3];
+    across(up, u, v);
+    column_entry entry = {{0.0, 0.0}, 0.0, 0, index};
+    for (int d = 0; d < 3; ++d) {
+        entry.across[0] += x[d] * u[d];
+        entry.across[1] += x[d] * v[d];
+        entry.height += x[d] * up[d];
+    }
+    return entry;
+}
+
+/* Sorts the entries into lattice columns (numbered in `group`), each from
+ * the top down. */
+static void sort_columns(column_entry *e, int count, double dx)
+{
+    qsort(e, (size_t)count, sizeof *e, by_across0);
+    number_groups(e, count, 0, dx);
+    qsort(e, (size_t)count, sizeof *e, by_band_across1);
+    number_groups(e, count, 1, dx);
+    qsort(e, (size_t)count, sizeof *e, by_column_top_down);
+}
+
+/* Hydrostatic initial state of the particles of the blocks marked
+ * `hydrostatic` (block k holds particles [first[k], first[k + 1])): in each
+ * lattice column along g, from the top down, the weight of the hydrostatic
+ * fluid above,
+ *   p_i = |g| dx (sum_{j above i} rho0_j + rho0_i / 2),
+ *   rho_i = rho0_i + p_i / c0_i^2 (the equation of state),
+ * with rho0 the particles' initial density, and mass rho_i dx^d, so that
+ * each particle keeps the lattice volume. Blocks stacked on a common
+ * lattice start in balance with each other, whatever their rho0. */
+static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_particles *h)
 {
     const double gnorm = sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
                               c->gravity[2] * c->gravity[2]);
-    const amsph_material *m = &c->materials[g->material];
-    if (gnorm == 0.0 || m->sound_speed <= 0.0)
-        return;
+    if (gnorm == 0.0)
+        return 0;
+    const double up[3] = {-c->gravity[0] / gnorm, -c->gravity[1] / gnorm, -c->gravity[2] / gnorm};
+    column_entry *entries = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof *entries);
+    if (!entries)
+        return amsph_fail("out of host memory for the hydrostatic initial state");
     const amsph_real *x = amsph_host_real(h, AMSPH_FIELD_POSITION);
-    double top = -INFINITY;
-    for (int i = first; i < h->n; ++i) {
-        double height = 0.0; /* along -g */
-        for (int d = 0; d < 3; ++d)
-            height -= x[3 * i + d] * c->gravity[d] / gnorm;
-        top = fmax(top, height);
+    int count = 0;
+    for (int k = 0; k < c->n_geometry; ++k)
+        if (c->geometry[k].hydrostatic && c->materials[c->geometry[k].material].sound_speed > 0.0)
+            for (int i = first[k]; i < first[k + 1]; ++i)
+                entries[count++] = column_entry_of(x + 3 * i, up, i);
+    sort_columns(entries, count, c->dx);
+    amsph_real *rho = amsph_host_real(h, AMSPH_FIELD_DENSITY);
+    const int *material = h->data[AMSPH_FIELD_MATERIAL];
+    double above = 0.0; /* sum of rho0 over the column above */
+    for (int k = 0; k < count; ++k) {
+        if (k > 0 && entries[k].group != entries[k - 1].group)
+            above = 0.0;
+        const int i = entries[k].index;
+        const double rho0 = rho[i], c0 = c->materials[material[i]].sound_speed;
+        const double p = gnorm * c->dx * (above + 0.5 * rho0);
+        above += rho0;
+        rho[i] = (amsph_real)(rho0 + p / (c0 * c0));
+        amsph_host_real(h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho[i] * pow(c->dx, c->dim));
     }
-    for (int i = first; i < h->n; ++i) {
-        double height = 0.0;
-        for (int d = 0; d < 3; ++d)
-            height -= x[3 * i + d] * c->gravity[d] / gnorm;
-        const double depth = top + 0.5 * c->dx - height;
-        const double rho = m->density + m->density * gnorm * depth / (m->sound_speed * m->sound_speed);
-        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)rho;
-        /* the lattice volume dx^d holds the compressed fluid: m = rho dx^d */
-        amsph_host_real(h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho * pow(c->dx, c->dim));
-    }
+    free(entries);
+    return 0;
 }
 
 static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h)
@@ -178,12 +297,8 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
                           c->path, g->line, c->dx);
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
-    const int first = h->n;
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
-    AMSPH_CHECK(visit_block(c, g, h, &count));
-    if (g->hydrostatic)
-        set_hydrostatic(c, g, h, first);
-    return 0;
+    return visit_block(c, g, h, &count);
 }
 
 static int temperature_given(const amsph_case *c)
@@ -203,7 +318,9 @@ int amsph_scene_build(const amsph_case *c, amsph_host_particles *h)
     for (size_t k = 0; k < sizeof always / sizeof always[0]; ++k)
         AMSPH_CHECK(amsph_host_add_field(h, always[k]));
     const int with_temperature = temperature_given(c);
-    if (with_temperature) {
+    if (c->temperature_history.enabled) {
+        AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_TEMPERATURE));
+    } else if (with_temperature) {
         if (with_temperature != c->n_geometry)
             for (int k = 0; k < c->n_geometry; ++k)
                 if (!c->geometry[k].has_temperature)
@@ -212,7 +329,11 @@ int amsph_scene_build(const amsph_case *c, amsph_host_particles *h)
                                       c->path, c->geometry[k].line);
         AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_TEMPERATURE));
     }
-    for (int k = 0; k < c->n_geometry; ++k)
+    int first[AMSPH_MAX_GEOMETRY + 1];
+    for (int k = 0; k < c->n_geometry; ++k) {
+        first[k] = h->n;
         AMSPH_CHECK(add_block(c, &c->geometry[k], h));
-    return 0;
+    }
+    first[c->n_geometry] = h->n;
+    return set_hydrostatic(c, first, h);
 }

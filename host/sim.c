@@ -41,11 +41,17 @@ static int upload_materials(amsph_sim *s)
     const amsph_case *c = &s->config;
     amsph_real table[AMSPH_MAX_MATERIALS * MATERIAL_STRIDE] = {0};
     for (int m = 0; m < c->n_materials; ++m) {
-        table[MATERIAL_STRIDE * m + MATERIAL_DENSITY] = (amsph_real)c->materials[m].density;
-        table[MATERIAL_STRIDE * m + MATERIAL_SOUND_SPEED] = (amsph_real)c->materials[m].sound_speed;
-        table[MATERIAL_STRIDE * m + MATERIAL_VISCOSITY] = (amsph_real)c->materials[m].viscosity;
-        table[MATERIAL_STRIDE * m + MATERIAL_MUSHY_VISCOSITY] = (amsph_real)c->materials[m].mushy_viscosity;
-        surface_tension_row(&c->materials[m], table + MATERIAL_STRIDE * m);
+        const amsph_material *mat = &c->materials[m];
+        amsph_real *row = table + MATERIAL_STRIDE * m;
+        row[MATERIAL_SOUND_SPEED] = (amsph_real)mat->sound_speed;
+        row[MATERIAL_VISCOSITY] = (amsph_real)mat->viscosity;
+        row[MATERIAL_MUSHY_VISCOSITY] = (amsph_real)mat->mushy_viscosity;
+        surface_tension_row(mat, row);
+        row[MATERIAL_DENSITY_POINTS] = (amsph_real)mat->density.n;
+        for (int i = 0; i < mat->density.n; ++i) {
+            row[MATERIAL_DENSITY_TEMPERATURE + i] = (amsph_real)mat->density.T[i];
+            row[MATERIAL_DENSITY_VALUE + i] = (amsph_real)mat->density.v[i];
+        }
     }
     const size_t bytes = sizeof table;
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->materials));
@@ -71,6 +77,19 @@ static int compute_rates(amsph_sim *s, double dt)
     return AMSPH_LAUNCH(s->backend, "body_force", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
                         amsph_arg_int(p->n), amsph_arg_real(g[0]), amsph_arg_real(g[1]),
                         amsph_arg_real(g[2]), amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]));
+}
+
+/* The temperature at the step's end, from the thermal module or the
+ * prescribed history, and the reference densities that follow it. */
+static int update_temperature(amsph_sim *s, double dt)
+{
+    if (s->config.thermal.enabled)
+        AMSPH_CHECK(amsph_thermal_advance(s, dt));
+    else if (s->config.temperature_history.enabled)
+        AMSPH_CHECK(amsph_thermal_prescribe(s, s->time + dt));
+    if (s->reference_density_varies)
+        AMSPH_CHECK(amsph_fluid_reference_density(s));
+    return 0;
 }
 
 static int keep_last_good(amsph_sim *s)
@@ -325,8 +344,7 @@ int amsph_sim_step(amsph_sim *s, double dt)
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
-    if (s->config.thermal.enabled)
-        AMSPH_CHECK(amsph_thermal_advance(s, dt));
+    AMSPH_CHECK(update_temperature(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     if (s->config.fluid.damping_rate > 0.0 && s->time < s->config.fluid.damping_end)

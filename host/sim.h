@@ -3,7 +3,8 @@
  *   no module:   fluid particles fall under gravity (ballistic)
  *   fluid:       weakly compressible SPH (kernels/fluid.cl) with walls,
  *                adaptive dt and run guards;
- *   thermal:     enthalpy, conduction, phase change, radiation (kernels/thermal.cl);
+ *   thermal:     enthalpy, conduction, phase change, radiation (kernels/thermal.cl),
+ *                or instead a prescribed temperature history;
  *   laser:       the absorbed laser power of every particle (kernels/laser.cl),
  *                evaluated with the enthalpy update (thermal) or after every drift. */
 #ifndef AMSPH_SIM_H
@@ -60,6 +61,7 @@ typedef struct {
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
+    int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */
     thermal_params thermal;
     amsph_buffer *thermal_table; /* kernels/thermal_table.h */
     amsph_thermal_work thermal_work;

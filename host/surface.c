@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "material.h"
 
 #define PI 3.14159265358979323846
 
@@ -98,8 +99,11 @@ int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit)
     double sigma = 0.0, rho = INFINITY;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->particles.field[AMSPH_FIELD_SURFACE_TENSION],
                                  s->particles.n, &sigma));
-    for (int m = 0; m < s->config.n_materials; ++m)
-        rho = fmin(rho, s->config.materials[m].density);
+    for (int m = 0; m < s->config.n_materials; ++m) {
+        double lowest, highest;
+        amsph_material_density_bounds(&s->config.materials[m], &lowest, &highest);
+        rho = fmin(rho, lowest);
+    }
     const double h = s->h;
     const double capillary = 0.25 * sqrt(rho * h * h * h / (2.0 * PI * sigma));
     if (sigma > 0.0 && capillary < *dt) {

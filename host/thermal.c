@@ -6,21 +6,10 @@
 
 #include "error.h"
 #include "laser.h"
+#include "material.h"
 #include "thermal_table.h"
 
 #define MUSHY_SUBDIVISIONS 8 /* nodes inside the mushy interval */
-
-/* Value of a property at T: constant, or piecewise linear and constant
- * beyond its ends. */
-static double property_value(const amsph_property *p, double t)
-{
-    if (p->n == 1 || t <= p->T[0])
-        return p->v[0];
-    for (int i = 1; i < p->n; ++i)
-        if (t < p->T[i])
-            return p->v[i - 1] + (t - p->T[i - 1]) * (p->v[i] - p->v[i - 1]) / (p->T[i] - p->T[i - 1]);
-    return p->v[p->n - 1];
-}
 
 static int melts(const amsph_material *m)
 {
@@ -40,13 +29,15 @@ static double liquid_fraction(const amsph_material *m, double t)
  * (theta = theta_s + (theta_l - theta_s) s; PHYSICS.md erratum 2). */
 static double sensible_heat(const amsph_material *m, double t)
 {
-    const double cs = property_value(&m->specific_heat, t), cl = property_value(&m->liquid_specific_heat, t);
+    const double cs = amsph_property_value(&m->specific_heat, t);
+    const double cl = amsph_property_value(&m->liquid_specific_heat, t);
     return cs + (cl - cs) * liquid_fraction(m, t);
 }
 
 static double blended_conductivity(const amsph_material *m, double t)
 {
-    const double ks = property_value(&m->conductivity, t), kl = property_value(&m->liquid_conductivity, t);
+    const double ks = amsph_property_value(&m->conductivity, t);
+    const double kl = amsph_property_value(&m->liquid_conductivity, t);
     return ks + (kl - ks) * liquid_fraction(m, t);
 }
 
@@ -193,8 +184,8 @@ static int alloc_work(amsph_sim *s, amsph_buffer **buffer)
 }
 
 /* The diffusion limit diffusion_number rho c h^2 / k over the materials,
- * with the smallest apparent heat capacity and the largest conductivity of
- * each material's table (fixed for the run). */
+ * with the smallest reference density, apparent heat capacity and the
+ * largest conductivity of each material's tables (fixed for the run). */
 static double diffusion_limit(const amsph_sim *s)
 {
     const amsph_case *c = &s->config;
@@ -208,8 +199,10 @@ static double diffusion_limit(const amsph_sim *s)
             if (i > 0)
                 c_min = fmin(c_min, (h[i] - h[i - 1]) / (t[i] - t[i - 1]));
         }
+        double rho_min, rho_max;
+        amsph_material_density_bounds(&c->materials[m], &rho_min, &rho_max);
         if (k_max > 0.0)
-            limit = fmin(limit, c->thermal.diffusion_number * c->materials[m].density * c_min * s->h * s->h / k_max);
+            limit = fmin(limit, c->thermal.diffusion_number * rho_min * c_min * s->h * s->h / k_max);
     }
     return limit;
 }
@@ -409,4 +402,11 @@ int amsph_thermal_ledger_error(amsph_sim *s, double *error)
     AMSPH_CHECK(amsph_thermal_energy(s, &energy));
     *error = amsph_energy_ledger_error(&s->ledger, energy);
     return 0;
+}
+
+int amsph_thermal_prescribe(amsph_sim *s, double t)
+{
+    const double value = amsph_temperature_history_at(&s->config.temperature_history, t);
+    return AMSPH_LAUNCH(s->backend, "uniform_temperature", s->particles.n, amsph_arg_int(s->particles.n),
+                        amsph_arg_real(value), field(s, AMSPH_FIELD_TEMPERATURE));
 }

@@ -1,6 +1,7 @@
 /* Host side of the thermal module: the materials' enthalpy tables, the
  * enthalpy update of a step (explicit, or implicit midpoint by fixed-point
- * iteration), the diffusion time-step limit and the energy ledger. */
+ * iteration), the diffusion time-step limit and the energy ledger; and,
+ * for cases without the module, the prescribed temperature history. */
 #ifndef AMSPH_THERMAL_H
 #define AMSPH_THERMAL_H
 
@@ -30,6 +31,10 @@ int amsph_thermal_energy(amsph_sim *s, double *energy);
 double amsph_energy_ledger_error(const amsph_energy_ledger *l, double energy);
 /* The same for the sim's state now. */
 int amsph_thermal_ledger_error(amsph_sim *s, double *error);
+
+/* Sets every particle's temperature to the case's temperature history at
+ * time t (cases without the thermal module). */
+int amsph_thermal_prescribe(amsph_sim *s, double t);
 
 /* Node table of one material (exposed for tests): temperatures, enthalpies
  * and conductivities of THERMAL_NODES nodes at most; returns the count. */

@@ -9,19 +9,32 @@
 #include "smoothing.h"
 #include "vec3.h"
 
-/* p = c0^2 (rho - rho0) + p_b for fluid particles (Russell 2018 Eq. 3.52;
- * rho0 comes through reference_density, the hook for rho0(T)); optionally
- * no lower than p_b, for free-surface flows without tension. */
+/* Reference density of every particle at its temperature, rho0(T)
+ * (Russell 2018 Eq. 3.52; kernels/materials.h), after the temperature
+ * changed. Particles keep their mass: a falling rho0 makes the equation of
+ * state push them apart until rho = m / V follows it (isothermal
+ * incompressibility, Russell Sec. 3.4.2). */
+KERNEL void update_reference_density(GLOBAL const int *material, GLOBAL const real *temperature, int n,
+                                     GLOBAL const real *materials, GLOBAL real *reference_density)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        reference_density[a] = reference_density_of_temperature(materials, material[a], temperature[a]);
+    }
+}
+
+/* p = c0^2 (rho - rho0(T)) + p_b for fluid particles (Russell 2018
+ * Eq. 3.52), rho0(T) from the reference_density field; optionally no lower
+ * than p_b, for free-surface flows without tension. */
 KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material,
-                              GLOBAL const real *density, int n, GLOBAL const real *materials,
-                              fluid_params p, GLOBAL real *pressure)
+                              GLOBAL const real *density, GLOBAL const real *reference_density, int n,
+                              GLOBAL const real *materials, fluid_params p, GLOBAL real *pressure)
 {
     FOR_EACH_ITEM(a, n)
     {
         if (kind[a] == KIND_FLUID) {
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
-            const real pressure_a = c0 * c0 * (density[a] - reference_density(materials, material[a])) +
-                                    p.background_pressure;
+            const real pressure_a = c0 * c0 * (density[a] - reference_density[a]) + p.background_pressure;
             pressure[a] = p.clamp_negative_pressure ? fmax(pressure_a, p.background_pressure) : pressure_a;
         }
     }
@@ -30,16 +43,18 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
 /* Wall and fixed-solid particles take their state from the fluid around them
  * (Adami, Hu & Adams 2012, Eqs. 22, 27, 28):
  *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
- *   rho_w = rho0 + (p_w - p_b) / c0^2          (the inverse equation of state)
+ *   rho_w = rho0_w + (p_w - p_b) / c0^2        (the inverse equation of state)
  *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
  * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
+ * rho0_w and c0 are the wall's own (its material at its temperature), so
+ * that its volume m_w / rho_w stays dx^d next to fluids of any rho0.
  * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
  * pressure would glue separating fluid to it and draw particles into it. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       int n, grid_geometry g, GLOBAL const int *cell_start,
-                       GLOBAL const real *materials, fluid_params p, GLOBAL real *density,
-                       GLOBAL real *pressure, GLOBAL real *wall_velocity)
+                       GLOBAL const real *reference_density, int n, grid_geometry g,
+                       GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
+                       GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *wall_velocity)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -63,7 +78,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                     }
                 }
             }
-            const real rho0 = reference_density(materials, material[a]);
+            const real rho0 = reference_density[a];
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
             real p_w = p.background_pressure;
             if (sum_w > REAL(0.0))
@@ -79,9 +94,11 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
 }
 
 /* delta-SPH density diffusion of one pair, as a Laplacian of the diffused
- * quantity q (rho; rho - rho0 after Russell 2018 Eq. 3.53; or rho - rho0
- * less the hydrostatic density after Fourtakas et al. 2019, which leaves a
- * fluid at rest under gravity untouched):
+ * quantity q (rho; rho - rho0 after Russell 2018 Eq. 3.53, each particle
+ * with its own rho0(T), so that neighbours of different reference density
+ * exchange only their departures from it; or rho - rho0 less the
+ * hydrostatic density after Fourtakas et al. 2019, which leaves a fluid at
+ * rest under gravity untouched):
  *   D_a = delta h c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
  * the Molteni & Colagrossi (2009) form without Antuono's correction term;
  * it decays a perturbation of q (tested). */
@@ -147,9 +164,9 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
  * other particle, for the guards. Gamma is computed for every particle,
  * the rates for fluid particles. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
-                       GLOBAL const real *density, GLOBAL const real *mass,
-                       GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       int n, grid_geometry g, GLOBAL const int *cell_start,
+                       GLOBAL const real *density, GLOBAL const real *reference_density,
+                       GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
+                       GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                        GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
                        GLOBAL real *gamma, GLOBAL real *closest)
 {
@@ -161,7 +178,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         const int mat_a = material[a];
         const real rho_a = density[a];
         const int shifted = p.density_diffusion == DIFFUSION_RUSSELL || p.density_diffusion == DIFFUSION_FOURTAKAS;
-        const real q_a = rho_a - (shifted ? reference_density(materials, mat_a) : REAL(0.0));
+        const real q_a = rho_a - (shifted ? reference_density[a] : REAL(0.0));
         real shepard = REAL(0.0), drho = REAL(0.0), diffusion = REAL(0.0);
         real nearest = REAL(1e30);
         FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
@@ -180,14 +197,13 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                     u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
                 drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
                 if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE) {
-                    const real q_b = density[b] - (shifted ? reference_density(materials, material[b]) : REAL(0.0));
+                    const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
                     real dq = q_a - q_b;
                     if (p.density_diffusion == DIFFUSION_FOURTAKAS) {
                         /* minus the hydrostatic density difference of the pair,
                          * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
                         const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
-                        dq -= reference_density(materials, material[b]) * dot3(p.gravity, r_ab) /
-                              (c0_b * c0_b);
+                        dq -= reference_density[b] * dot3(p.gravity, r_ab) / (c0_b * c0_b);
                     }
                     diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, &p);
                 }

@@ -1,11 +1,10 @@
 /* Run guards: per particle, the first check it fails, as a code the host
  * reduces with a maximum:
- *   GUARD_DENSITY   |rho - rho0| / rho0 above the bound (fluid)
+ *   GUARD_DENSITY   |rho - rho0(T)| / rho0(T) above the bound (fluid)
  *   GUARD_CLOSE     nearest neighbour closer than the bound (fluid)
  *   GUARD_NOT_FINITE position, velocity or density not finite (any kind) */
 #include "device.h"
 #include "kinds.h"
-#include "materials.h"
 
 #define GUARD_OK 0
 #define GUARD_DENSITY 1
@@ -13,10 +12,9 @@
 #define GUARD_NOT_FINITE 3
 
 KERNEL void guard_check(GLOBAL const real *position, GLOBAL const real *velocity,
-                        GLOBAL const real *density, GLOBAL const int *kind,
-                        GLOBAL const int *material, GLOBAL const real *closest, int n,
-                        GLOBAL const real *materials, real min_distance, real max_density_error,
-                        GLOBAL real *code)
+                        GLOBAL const real *density, GLOBAL const real *reference_density,
+                        GLOBAL const int *kind, GLOBAL const real *closest, int n, real min_distance,
+                        real max_density_error, GLOBAL real *code)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -27,7 +25,7 @@ KERNEL void guard_check(GLOBAL const real *position, GLOBAL const real *velocity
         if (!finite) {
             result = GUARD_NOT_FINITE;
         } else if (kind[a] == KIND_FLUID) {
-            const real rho0 = reference_density(materials, material[a]);
+            const real rho0 = reference_density[a];
             if (closest[a] < min_distance)
                 result = GUARD_CLOSE;
             else if (fabs(density[a] - rho0) > max_density_error * rho0)

@@ -301,3 +301,13 @@ KERNEL void finish_thermal_step(GLOBAL const int *material, GLOBAL const real *t
         }
     }
 }
+
+/* A prescribed temperature, the same on every particle (the temperature
+ * history of cases without the thermal module, host/material.h). */
+KERNEL void uniform_temperature(int n, real value, GLOBAL real *temperature)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        temperature[a] = value;
+    }
+}

@@ -8,7 +8,9 @@
  * operation, so the state (position, velocity, density, mass) must agree to
  * 1e-5 relative in float (1e-12 in double) of the field's scale. Pressure
  * c0^2 (rho - rho0) cancels the leading digits of rho, so its tolerance is
- * c0^2 times density's. Rates (acceleration, density rate) are not compared:
+ * c0^2 times density's; temperature and reference density (a prescribed
+ * history and rho0(T)) to 1e-5 of their scale. Rates (acceleration,
+ * density rate) are not compared:
  * they are sums of cancelling pair terms, and they enter the state, which is. */
 #include <math.h>
 
@@ -71,6 +73,34 @@ static const char *case_fluid_3d =
     "  - {shape: box, kind: wall, material: water, min: [0, 0, 0], max: [0.4, 0.2, 0.35], layers: 3, open: [+z]}\n"
     "  - {shape: box, kind: fluid, material: water, min: [0, 0, 0], max: [0.1, 0.2, 0.2], hydrostatic: true}\n";
 
+/* The isothermally incompressible fluid: a droplet (2D) and a ball (3D)
+ * whose rho0 follows a prescribed temperature (Russell 2018 Eq. 3.52). */
+static const char *case_isothermal_2d =
+    "dimension: 2\n"
+    "domain: {min: [-0.6, -0.6], max: [0.6, 0.6]}\n"
+    "dx: 0.05\n"
+    "end_time: 0.1\n"
+    "output_interval: 0.1\n"
+    "temperature_history: {reference: 300, amplitude: 50, frequency: 5}\n"
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"
+    "materials:\n"
+    "  - {name: liquid, density: [[250, 1050], [350, 950]], sound_speed: 20}\n"
+    "geometry:\n"
+    "  - {shape: circle, kind: fluid, material: liquid, center: [0, 0], radius: 0.4}\n";
+
+static const char *case_isothermal_3d =
+    "dimension: 3\n"
+    "domain: {min: [-0.6, -0.6, -0.6], max: [0.6, 0.6, 0.6]}\n"
+    "dx: 0.1\n"
+    "end_time: 0.1\n"
+    "output_interval: 0.1\n"
+    "temperature_history: {reference: 300, amplitude: 50, frequency: 5}\n"
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"
+    "materials:\n"
+    "  - {name: liquid, density: [[250, 1050], [350, 950]], sound_speed: 20}\n"
+    "geometry:\n"
+    "  - {shape: sphere, kind: fluid, material: liquid, center: [0, 0, 0], radius: 0.4}\n";
+
 /* Runs the case for its end time on backend k; host copy of the result. */
 static int run_case(const char *text, int k, amsph_host_particles *out, long long *removed)
 {
@@ -110,7 +140,9 @@ static double field_tolerance(const amsph_host_particles *h, amsph_field_id f, d
     case AMSPH_FIELD_POSITION:
     case AMSPH_FIELD_VELOCITY:
     case AMSPH_FIELD_DENSITY:
+    case AMSPH_FIELD_REFERENCE_DENSITY:
     case AMSPH_FIELD_MASS:
+    case AMSPH_FIELD_TEMPERATURE:
         return relative * field_scale(h, f);
     case AMSPH_FIELD_PRESSURE:
         return relative * c0 * c0 * field_scale(h, AMSPH_FIELD_DENSITY);
@@ -161,10 +193,11 @@ static void compare_runs(const char *name, const amsph_host_particles *a, const 
 
 int main(void)
 {
-    const char *cases[4] = {case_2d, case_3d, case_fluid_2d, case_fluid_3d};
-    const char *names[4] = {"2D tank", "3D periodic", "2D dam break (fluid)", "3D column (fluid)"};
-    const double sound_speed[4] = {0.0, 0.0, 25.0, 20.0};
-    for (int c = 0; c < 4; ++c) {
+    const char *cases[6] = {case_2d, case_3d, case_fluid_2d, case_fluid_3d, case_isothermal_2d, case_isothermal_3d};
+    const char *names[6] = {"2D tank", "3D periodic", "2D dam break (fluid)", "3D column (fluid)",
+                            "2D droplet, rho0(T)", "3D ball, rho0(T)"};
+    const double sound_speed[6] = {0.0, 0.0, 25.0, 20.0, 20.0, 20.0};
+    for (int c = 0; c < 6; ++c) {
         amsph_host_particles results[2] = {{0}, {0}};
         long long removed[2] = {0, 0};
         const int status0 = run_case(cases[c], 0, &results[0], &removed[0]);

@@ -8,6 +8,7 @@
  *    "case.yaml:LINE: ..." message on one line.
  * Prints one line per failure and ends with "N passed, M failed". */
 #include "case.h"
+#include "material.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -108,7 +109,7 @@ static const bad_case bad_cases[] = {
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
           "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, surface, "
-          "laser, materials, geometry)"},
+          "laser, temperature_history, materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -121,7 +122,8 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, fluid, thermal, surface, laser, materials, geometry)"},
+          "backend, device, gravity, fluid, thermal, surface, laser, temperature_history, "
+          "materials, geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
     {"duplicate key", BASE2 "dx: 0.02\n",
@@ -260,6 +262,29 @@ static const bad_case bad_cases[] = {
      NAME ":9: 'materials[0].surface_tension' must be >= 0, got -1"},
     {"thermal integration unknown", BASE2 "thermal: {integration: implicit}\n",
      NAME ":17: 'thermal.integration' must be one of explicit, midpoint; got 'implicit'"},
+
+    /* rho0(T) and the temperature history */
+    {"density table without temperatures", HEAD2 "materials:\n  - name: water\n    density: [[300, 1000], [400, 900]]\n" GEO_BOX,
+     NAME ":9: material 'water' has a temperature-dependent 'density', but the particles have no temperature: "
+          "give the geometry blocks a 'temperature' or add a 'temperature_history'"},
+    {"density table value not positive", HEAD2 "materials:\n  - name: water\n    density: [[300, 1000], [400, 0]]\n" GEO_BOX,
+     NAME ":10: 'materials[0].density[1]' value must be > 0, got '0'"},
+    {"temperature history with thermal",
+     HEAD2 "materials:\n  - {name: water, density: 1, specific_heat: 1, conductivity: 1}\n" GEO_BOX
+           "    temperature: 300\ntemperature_history: {reference: 300, amplitude: 10, frequency: 1}\nthermal: {}\n",
+     NAME ":17: 'temperature_history' prescribes the temperature; it cannot be used with the thermal module (the "
+          "'thermal:' section on line 18)"},
+    {"temperature history with a block temperature",
+     BASE2 "    temperature: 300\ntemperature_history: {reference: 300, amplitude: 10, frequency: 1}\n",
+     NAME ":12: geometry[0] has a 'temperature', but 'temperature_history' (line 18) sets every particle's "
+          "temperature; remove one of them"},
+    {"temperature history below 0 K", BASE2 "temperature_history: {reference: 30, amplitude: -50, frequency: 1}\n",
+     NAME ":17: 'temperature_history.amplitude' (-50 K) takes the temperature to -20 K, below 0 K"},
+    {"ramp without duration", BASE2 "temperature_history: {form: ramp, reference: 300, amplitude: 10}\n",
+     NAME ":17: missing required key 'duration' in temperature_history (form 'ramp')"},
+    {"frequency of a ramp",
+     BASE2 "temperature_history: {form: ramp, reference: 300, amplitude: 10, duration: 1, frequency: 2}\n",
+     NAME ":17: 'temperature_history.frequency' does not apply to form 'ramp'"},
     {"layers negative", BASE2 "    layers: -2\n",
      NAME ":17: 'geometry[0].layers' must be >= 0, got -2"},
     {"domain max not above min", "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 0]\n",
@@ -497,7 +522,7 @@ static void check_default_values(const amsph_case *c)
     expect(c->device == -1, "device default");
     expect(vec_is(c->gravity, 0, 0, 0), "gravity default");
     expect(c->n_materials == 1 && strcmp(c->materials[0].name, "water") == 0, "materials");
-    expect(near(c->materials[0].density, 1000), "density");
+    expect(c->materials[0].density.n == 1 && near(c->materials[0].density.v[0], 1000), "density");
     expect(c->materials[0].viscosity == 0 && c->materials[0].sound_speed == 0, "material defaults");
     const amsph_geometry *g = &c->geometry[0];
     expect(c->n_geometry == 1, "n_geometry");
@@ -596,10 +621,10 @@ static void check_full3d(const amsph_case *c)
     expect(c->backend == AMSPH_BACKEND_OPENCL && c->device == 2, "backend");
     expect(vec_is(c->gravity, 0, 0, -9.81), "gravity");
     expect(c->n_materials == 2, "n_materials");
-    expect(strcmp(c->materials[0].name, "water") == 0 && near(c->materials[0].density, 1000) &&
+    expect(strcmp(c->materials[0].name, "water") == 0 && near(c->materials[0].density.v[0], 1000) &&
                near(c->materials[0].viscosity, 1e-3) && near(c->materials[0].sound_speed, 20),
            "water");
-    expect(strcmp(c->materials[1].name, "oil") == 0 && near(c->materials[1].density, 900) &&
+    expect(strcmp(c->materials[1].name, "oil") == 0 && near(c->materials[1].density.v[0], 900) &&
                c->materials[1].viscosity == 0,
            "oil");
     expect(c->n_geometry == 4, "n_geometry");
@@ -709,22 +734,43 @@ static void check_presets2d(const amsph_case *c)
     expect(a->preset == AMSPH_PRESET_STEEL_304 && b->preset == AMSPH_PRESET_STEEL_FUCHS &&
                none->preset == AMSPH_PRESET_NONE,
            "preset values");
-    expect(near(a->density, 7900) && near(a->viscosity, 0.02), "304: the material's own density and viscosity");
+    expect(constant_is(&a->density, 7900) && near(a->viscosity, 0.02), "304: the material's own density and viscosity");
     expect(near(a->mushy_viscosity, 1.0), "304: mushy viscosity 1.0 Pa s (solid)");
     expect(constant_is(&a->specific_heat, 711.17) && constant_is(&a->liquid_specific_heat, 937.35),
            "304: c_p 711.17 -> 937.35");
     expect(constant_is(&a->conductivity, 20) && constant_is(&a->liquid_conductivity, 209.3), "304: k 20 -> 209.3");
     expect(near(a->melting_temperature, 1723) && near(a->melting_range, 100), "304: T_m 1723 K over 100 K");
     expect(a->latent_heat == 0 && a->emissivity == 0 && a->sound_speed == 0, "304: the other keys' defaults");
-    expect(near(b->density, 7430) && near(b->viscosity, 6e-3) && near(b->mushy_viscosity, 6e-3),
+    expect(constant_is(&b->density, 7430) && near(b->viscosity, 6e-3) && near(b->mushy_viscosity, 6e-3),
            "Fuchs: rho0 7430, eta 6e-3 (mushy: the same)");
     expect(constant_is(&b->specific_heat, 965) && constant_is(&b->liquid_specific_heat, 965), "Fuchs: c_p 965");
     expect(constant_is(&b->conductivity, 35.95) && constant_is(&b->liquid_conductivity, 35.95), "Fuchs: k 35.95");
     expect(near(b->melting_temperature, 1700) && near(b->melting_range, 1) && b->latent_heat == 0,
            "Fuchs: T_m 1700 K, no latent heat");
-    expect(near(none->density, 1000) && none->viscosity == 0 && none->specific_heat.n == 0 &&
+    expect(constant_is(&none->density, 1000) && none->viscosity == 0 && none->specific_heat.n == 0 &&
                none->melting_temperature == 0,
            "none: defaults");
+}
+
+/* A density table and a ramp of the temperature. */
+static const char isothermal2d[] = HEAD2 "materials:\n  - name: water\n    density: [[250, 1050], [350, 950]]\n" GEO_BOX
+    "temperature_history: {form: ramp, reference: 300, amplitude: -20, duration: 2}\n";
+
+static void check_isothermal2d(const amsph_case *c)
+{
+    const amsph_property *rho0 = &c->materials[0].density;
+    expect(rho0->n == 2 && near(rho0->T[0], 250) && near(rho0->v[0], 1050) && near(rho0->T[1], 350) &&
+               near(rho0->v[1], 950),
+           "density table");
+    expect(near(amsph_material_density(&c->materials[0], 320), 980) &&
+               near(amsph_material_density(&c->materials[0], 400), 950),
+           "rho0(T), constant beyond the table");
+    const amsph_temperature_history *h = &c->temperature_history;
+    expect(h->enabled && h->form == AMSPH_HISTORY_RAMP && near(h->reference, 300) && near(h->amplitude, -20) &&
+               near(h->duration, 2),
+           "history");
+    expect(near(amsph_temperature_history_at(h, 1), 290) && near(amsph_temperature_history_at(h, 5), 280),
+           "T(t) of the ramp");
 }
 
 typedef struct {
@@ -740,6 +786,7 @@ static const good_case good_cases[] = {
     {"2D tank and circle", tank2d, check_tank2d},
     {"2D laser, surface absorption, defaults", laser2d, check_laser2d},
     {"material presets", presets2d, check_presets2d},
+    {"2D density table, temperature ramp", isothermal2d, check_isothermal2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,

@@ -134,11 +134,14 @@ static void test_dambreak_volume(const char *file)
 }
 
 /* A periodic 2D lattice at rest, two materials (rho0 1000 and 2000) in
- * alternate columns, rho = rho0 + A sin(2 pi x / P). The density rate of
- * the continuity kernel is the delta-SPH term alone:
+ * alternate columns, or one material whose rho0(T) rises from 1000 to 2000
+ * across the lattice with the temperature (a rho0(T) table evaluated by
+ * the kernel), rho = rho0 + A sin(2 pi x / P). The density rate of the
+ * continuity kernel is the delta-SPH term alone:
  *   - it must decay the perturbation (negative where rho - rho0 peaks);
- *   - the Russell form, on rho - rho0, must give the same rates as with a
- *     single material, however different the reference densities are;
+ *   - the Russell form, on rho - rho0 with each particle's own rho0, must
+ *     give the same rates as with a single material, however different
+ *     the reference densities of neighbours are;
  *   - it approximates delta h c0 Laplacian(rho - rho0) = -delta h c0 k^2 A sin(kx). */
 static const char *lattice_case =
     "dimension: 2\n"
@@ -153,10 +156,32 @@ static const char *lattice_case =
     "  - {name: light, density: 1000, sound_speed: 10}\n"
     "  - {name: heavy, density: %s, sound_speed: 10}\n"
     "geometry:\n"
-    "  - {shape: box, kind: fluid, material: light, min: [0, 0], max: [1, 0.5]}\n";
+    "  - {shape: box, kind: fluid, material: light, min: [0, 0], max: [1, 0.5], temperature: 300}\n";
+
+typedef enum { COLUMNS, GRADED } reference_layout;
+
+/* Material and rho0 of the lattice's particles: alternate columns of
+ * light and heavy, or all heavy (a rho0(T) table) at T = 300 + 100 x K,
+ * rho0 then from the kernel that evaluates the table. */
+static int set_reference_densities(amsph_sim *s, reference_layout layout)
+{
+    amsph_host_particles h;
+    AMSPH_CHECK(amsph_particles_download(&s->particles, &h));
+    for (int i = 0; i < h.n; ++i) {
+        const double x = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i];
+        const int material = layout == GRADED ? 1 : (int)(x / s->config.dx) % 2;
+        ((int *)h.data[AMSPH_FIELD_MATERIAL])[i] = material;
+        amsph_host_real(&h, AMSPH_FIELD_TEMPERATURE)[i] = (amsph_real)(300.0 + 100.0 * x);
+        amsph_host_real(&h, AMSPH_FIELD_REFERENCE_DENSITY)[i] = (amsph_real)s->config.materials[material].density.v[0];
+    }
+    amsph_particles_free(&s->particles);
+    int status = amsph_particles_upload(s->backend, &h, &s->particles);
+    amsph_host_free(&h);
+    return !status && layout == GRADED ? amsph_fluid_reference_density(s) : status;
+}
 
 /* Density rates of the perturbed lattice, keyed by particle id. */
-static int diffusion_rates(const char *form, const char *heavy_density, double amplitude,
+static int diffusion_rates(const char *form, const char *heavy_density, reference_layout layout, double amplitude,
                            double *rate_by_id, double *x_by_id, int *n)
 {
     char text[2048], err[512];
@@ -167,16 +192,14 @@ static int diffusion_rates(const char *form, const char *heavy_density, double a
     amsph_backend *b = testing_backend(0);
     amsph_sim s;
     AMSPH_CHECK(amsph_sim_create(&c, b, &s));
+    AMSPH_CHECK(set_reference_densities(&s, layout));
     amsph_host_particles h;
     AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
     for (int i = 0; i < h.n; ++i) {
         const double x = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i];
-        const int column = (int)(x / c.dx);
-        const int material = column % 2;
-        ((int *)h.data[AMSPH_FIELD_MATERIAL])[i] = material;
-        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] = (amsph_real)(c.materials[material].density * c.dx * c.dx);
-        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] =
-            (amsph_real)(c.materials[material].density + amplitude * sin(2.0 * PI * x));
+        const double rho0 = amsph_host_real(&h, AMSPH_FIELD_REFERENCE_DENSITY)[i];
+        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] = (amsph_real)(rho0 * c.dx * c.dx);
+        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(rho0 + amplitude * sin(2.0 * PI * x));
     }
     amsph_particles_free(&s.particles);
     AMSPH_CHECK(amsph_particles_upload(b, &h, &s.particles));
@@ -197,19 +220,21 @@ static int diffusion_rates(const char *form, const char *heavy_density, double a
 static void test_density_diffusion(void)
 {
     enum { MAX = 1000 };
-    static double one[MAX], two[MAX], mixed_molteni[MAX], fourtakas[MAX], x[MAX];
+    static double one[MAX], two[MAX], graded[MAX], mixed_molteni[MAX], fourtakas[MAX], x[MAX];
     int n = 0;
     const double A = 1.0, delta = 0.1, h = 0.025, c0 = 10.0, k = 2.0 * PI;
-    CHECK_OK(diffusion_rates("russell", "1000", A, one, x, &n));
-    CHECK_OK(diffusion_rates("russell", "2000", A, two, x, &n));
-    CHECK_OK(diffusion_rates("molteni", "2000", A, mixed_molteni, x, &n));
-    CHECK_OK(diffusion_rates("fourtakas", "2000", A, fourtakas, x, &n)); /* no gravity: = russell */
+    CHECK_OK(diffusion_rates("russell", "1000", COLUMNS, A, one, x, &n));
+    CHECK_OK(diffusion_rates("russell", "2000", COLUMNS, A, two, x, &n));
+    CHECK_OK(diffusion_rates("russell", "[[300, 1000], [400, 2000]]", GRADED, A, graded, x, &n));
+    CHECK_OK(diffusion_rates("molteni", "2000", COLUMNS, A, mixed_molteni, x, &n));
+    CHECK_OK(diffusion_rates("fourtakas", "2000", COLUMNS, A, fourtakas, x, &n)); /* no gravity: = russell */
     double decay = 0.0, worst_mixed = 0.0, worst_laplacian = 0.0, molteni_scale = 0.0;
     const double expected_scale = delta * h * c0 * k * k * A;
     for (int i = 0; i < n; ++i) {
         const double s = sin(k * x[i]);
         decay += one[i] * s;
         worst_mixed = fmax(worst_mixed, fmax(fabs(two[i] - one[i]), fabs(fourtakas[i] - one[i])));
+        worst_mixed = fmax(worst_mixed, fabs(graded[i] - one[i]));
         worst_laplacian = fmax(worst_laplacian, fabs(one[i] + expected_scale * s));
         molteni_scale = fmax(molteni_scale, fabs(mixed_molteni[i]));
     }
@@ -290,6 +315,60 @@ static void test_hydrostatic(void)
             fastest);
     CHECK(worst_p < 0.01 * rho0 * g * H, "pressure error %.4f of rho g H (goal < 1%%)", worst_p / (rho0 * g * H));
     CHECK(fastest < 1e-3 * sqrt(g * H), "max speed %.2e m/s (goal < %.2e)", fastest, 1e-3 * sqrt(g * H));
+    amsph_host_free(&h);
+    stop_sim(b, &s);
+}
+
+/* Two fluids stacked in a tank of a third material, started hydrostatic:
+ * every fluid particle's pressure is the weight of the fluid above it,
+ * p = g (rho_l (1 - y)) above the interface at y = 0.5 and p = g (rho_l 0.5
+ * + rho_h (0.5 - y)) below it (the column pass adds rho0 g dx per particle
+ * above and half its own, which is this exactly at the lattice points).
+ * The walls take their own material's rho0 in the inverse equation of
+ * state (Adami et al. 2012), so each keeps its lattice volume m / rho =
+ * dx^2 up to the compression p / (rho0 c0^2) < 0.3%; a wall that took the
+ * fluid's rho0 would have 1.5 to 3 dx^2. */
+static void test_stacked_hydrostatic(void)
+{
+    static const char *text =
+        "dimension: 2\n"
+        "domain: {min: [-0.2, -0.2], max: [1.2, 1.4]}\n"
+        "dx: 0.05\n"
+        "end_time: 1\n"
+        "output_interval: 1\n"
+        "gravity: [0, -10]\n"
+        "fluid: {}\n"
+        "materials:\n"
+        "  - {name: light, density: 1000, sound_speed: 50}\n"
+        "  - {name: heavy, density: 2000, sound_speed: 50}\n"
+        "  - {name: steel, density: 3000, sound_speed: 50}\n"
+        "geometry:\n"
+        "  - {shape: box, kind: wall, material: steel, min: [0, 0], max: [1, 1.2], layers: 3, open: [+y]}\n"
+        "  - {shape: box, kind: fluid, material: light, min: [0, 0.5], max: [1, 1], hydrostatic: true}\n"
+        "  - {shape: box, kind: fluid, material: heavy, min: [0, 0], max: [1, 0.5], hydrostatic: true}\n";
+    amsph_case c;
+    char err[512];
+    CHECK(amsph_case_parse(text, strlen(text), "stacked.yaml", &c, err, sizeof err) == 0, "%s", err);
+    amsph_sim s;
+    amsph_backend *b = start_sim(&c, &s);
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    const double g = 10.0, scale = 1000.0 * g * 1.0, dx = c.dx;
+    double worst_p = 0.0, worst_wall = 0.0;
+    for (int i = 0; i < h.n; ++i) {
+        const double y = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + 1];
+        const double p = amsph_host_real(&h, AMSPH_FIELD_PRESSURE)[i];
+        if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID) {
+            const double exact = y > 0.5 ? 1000.0 * g * (1.0 - y) : g * (1000.0 * 0.5 + 2000.0 * (0.5 - y));
+            worst_p = fmax(worst_p, fabs(p - exact));
+        } else {
+            const double volume = amsph_host_real(&h, AMSPH_FIELD_MASS)[i] / amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i];
+            worst_wall = fmax(worst_wall, fabs(volume / (dx * dx) - 1.0));
+        }
+    }
+    CHECK(worst_p < (AMSPH_DOUBLE ? 1e-9 : 1e-4) * scale, "stacked fluids: pressure off the weight above by %g Pa",
+          worst_p);
+    CHECK(worst_wall < 0.003, "a wall particle's volume is off dx^2 by %.3g of it", worst_wall);
     amsph_host_free(&h);
     stop_sim(b, &s);
 }
@@ -427,6 +506,7 @@ static void test_pressure_gradient_balances_gravity(void)
 
 int main(void)
 {
+    test_stacked_hydrostatic();
     test_pressure_gradient_balances_gravity();
     test_tensile_correction();
     test_pressure_clamp();
