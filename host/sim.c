@@ -42,10 +42,13 @@ static int upload_materials(amsph_sim *s)
  * particle, from the state after the drift. */
 static int compute_rates(amsph_sim *s, double dt)
 {
-    if (s->config.fluid.enabled)
+    if (s->config.fluid.enabled) {
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_DENSITY, NULL));
         AMSPH_CHECK(amsph_fluid_density(s, dt));
+    }
     if (s->config.laser.enabled && !s->config.thermal.enabled)
         AMSPH_CHECK(amsph_laser_absorb(s, s->time + dt));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_FORCES, NULL));
     if (s->config.fluid.enabled)
         return amsph_fluid_forces(s);
     amsph_particles *p = &s->particles;
@@ -244,6 +247,11 @@ void amsph_sim_state_free(amsph_sim_state *st)
     amsph_host_free(&st->last_good);
 }
 
+int amsph_sim_phase(amsph_sim *s, amsph_phase next, amsph_phase *previous)
+{
+    return amsph_timers_switch(&s->timers, s->backend, next, previous);
+}
+
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
 {
     amsph_particles *p = &s->particles;
@@ -254,7 +262,7 @@ int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
 
 /* Without the fluid module the limits are the kinematic CFL and the body
  * force (Fuchs et al. 2022 Eq. 42); the fluid module adds its own. */
-int amsph_sim_stable_dt(amsph_sim *s, double *dt)
+static int stable_dt(amsph_sim *s, double *dt)
 {
     *dt = INFINITY;
     s->dt_limit = "none";
@@ -285,6 +293,14 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
     return 0;
 }
 
+int amsph_sim_stable_dt(amsph_sim *s, double *dt)
+{
+    amsph_phase outside;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
+    AMSPH_CHECK(stable_dt(s, dt));
+    return amsph_sim_phase(s, outside, NULL);
+}
+
 static int kick(amsph_sim *s, double half_dt)
 {
     amsph_particles *p = &s->particles;
@@ -296,23 +312,32 @@ static int kick(amsph_sim *s, double half_dt)
 int amsph_sim_step(amsph_sim *s, double dt)
 {
     amsph_particles *p = &s->particles;
+    amsph_phase outside;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "drift", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
-    if (s->config.thermal.enabled)
+    if (s->config.thermal.enabled) {
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_THERMAL, NULL));
         AMSPH_CHECK(amsph_thermal_advance(s, dt));
+    }
     AMSPH_CHECK(compute_rates(s, dt));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, NULL));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     s->time += dt;
     s->dt = dt;
     ++s->step;
-    if (!s->config.fluid.enabled)
-        return 0;
-    if (amsph_guards_check(s)) {
-        s->guard_failed = 1;
-        return 1;
+    if (s->config.fluid.enabled) {
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_GUARDS, NULL));
+        if (amsph_guards_check(s)) {
+            s->guard_failed = 1;
+            return 1;
+        }
+        if (s->step % LAST_GOOD_INTERVAL == 0)
+            AMSPH_CHECK(keep_last_good(s));
     }
-    return s->step % LAST_GOOD_INTERVAL == 0 ? keep_last_good(s) : 0;
+    return amsph_sim_phase(s, outside, NULL);
 }
