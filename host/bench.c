@@ -124,7 +124,12 @@ static int scale_to_count(const amsph_case *c, long long target, amsph_case *sca
         const double factor = pow((double)n / (double)target, 1.0 / scaled->dim);
         scaled->dx *= factor;
         scaled->laser.bin_size *= factor;
-        AMSPH_CHECK(count_particles(scaled, &n));
+        if (count_particles(scaled, &n)) {
+            char message[1024];
+            snprintf(message, sizeof message, "%s", amsph_last_error());
+            return amsph_fail("%s (the case scaled to dx = %g m for %lld particles)", message, scaled->dx,
+                              target);
+        }
     }
     return 0;
 }
