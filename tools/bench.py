@@ -13,7 +13,7 @@ Writes OUT/throughput.csv, OUT/convergence.csv, OUT/throughput.png (throughput
 and time per step against particles), OUT/error_vs_wall.png and OUT/tables.md
 (the Markdown tables for BENCHMARKS.md, also printed), from the repository root:
 
-    tools/bench.py --out bench-out            # the full sweep (hours on 2 cores)
+    tools/bench.py --out bench-out            # the full sweep (about 30 min on 2 cores)
     tools/bench.py --out bench-out --quick    # a regression check, under two minutes
 
 The threads are the environment's (OMP_NUM_THREADS; pocl: POCL_MAX_PTHREAD_COUNT).
@@ -200,7 +200,8 @@ def main():
     thr = throughput(amsph, out, names, counts, steps, 1 if args.quick else 3)
     conv = [] if args.no_convergence else sweeps(amsph, QUICK_SWEEPS if args.quick else FULL_SWEEPS,
                                                  args.convergence_backend)
-    header = (f"Machine: {machine()}; {thr[0]['build']}; OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}; "
+    header = (f"Machine: {machine()}; {thr[0]['build']}; OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}, "
+              f"POCL_MAX_PTHREAD_COUNT={os.environ.get('POCL_MAX_PTHREAD_COUNT', 'unset')}; "
               f"{datetime.date.today()}; load average {load:.2f} at the start, {os.getloadavg()[0]:.2f} at the end; "
               f"{time.monotonic() - start:.0f} s in all")
     write_csv(os.path.join(out, "throughput.csv"), thr, ["physics", "backend_name"] + list(thr[0].keys())[:-2])
