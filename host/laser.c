@@ -185,7 +185,7 @@ static int absorb_surface(amsph_sim *s)
 }
 
 /* laser_power for the beam at time t with the given power. */
-static int absorb(amsph_sim *s, double t, double power)
+static int absorb_beam(amsph_sim *s, double t, double power)
 {
     _Static_assert(sizeof(laser_params) <= sizeof(((amsph_arg *)0)->value.bytes),
                    "laser_params must fit a kernel argument");
@@ -202,6 +202,15 @@ static int absorb(amsph_sim *s, double t, double power)
     else
         AMSPH_CHECK(absorb_surface(s));
     return amsph_reduce_sum(s->backend, s->work, n, &s->laser.absorbed_power);
+}
+
+/* absorb_beam, timed as the laser's phase of the step. */
+static int absorb(amsph_sim *s, double t, double power)
+{
+    amsph_phase outer;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_LASER, &outer));
+    AMSPH_CHECK(absorb_beam(s, t, power));
+    return amsph_sim_phase(s, outer, NULL);
 }
 
 int amsph_laser_absorb(amsph_sim *s, double t)

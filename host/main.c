@@ -1,6 +1,7 @@
 /* The amsph command line. Exit status: 0 success, 1 a run failed, 2 bad
  * input (command line, case file or restart file), 128 + the signal number
  * for a run stopped by SIGINT or SIGTERM (after its checkpoint). */
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -31,8 +32,13 @@ static const char usage[] =
     "  devices             list the OpenCL devices and the OpenMP backend\n"
     "  keys                print the case-file key reference (Markdown)\n"
     "  columns             print the series.csv column reference (Markdown)\n"
-    "  bench grid [--particles N] [--repeat R] [--backend B] [--device N]\n"
+    "  bench grid [--particles N]... [--repeat R] [--backend B] [--device N]\n"
     "                      time the sorted-grid build (3D, random particles)\n"
+    "  bench throughput CASE.yaml [--particles N]... [--steps S] [--warmup W] [--quick]\n"
+    "      [--csv FILE] [--backend B] [--device N]\n"
+    "                      time the case's step scaled to N particles (default: as it is):\n"
+    "                      particle-steps/s, ms per module, device bytes per particle and\n"
+    "                      the growth of the step's time with N; --quick: 2 + 3 steps\n"
     "  --help              this text\n"
     "\n"
     "The backend and device default to the case file's, then openmp and the first\n"
@@ -48,8 +54,13 @@ typedef struct {
     long long max_steps;        /* 0: no limit */
     double checkpoint_interval; /* wall seconds; 0: none */
     const char *restart;        /* checkpoint to continue from */
-    long long particles;
+    long long particles[AMSPH_BENCH_MAX_COUNTS]; /* bench: --particles, in order */
+    int n_particles;
     int repeat;
+    int steps;  /* 0: the default */
+    int warmup; /* -1: the default */
+    int quick;
+    const char *csv;
 } cli_options;
 
 static int bad_usage(const char *message, const char *value)
@@ -66,6 +77,17 @@ static int parse_int_option(const char *text, long long min, long long *out)
     if (!end || *end || end == text || v < min)
         return 1;
     *out = v;
+    return 0;
+}
+
+/* A particle count: an integer, also written as 1e6. */
+static int parse_count_option(const char *text, long long *out)
+{
+    char *end = NULL;
+    const double v = strtod(text, &end);
+    if (!end || *end || end == text || !(v >= 1.0 && v <= 2e9) || v != floor(v))
+        return 1;
+    *out = (long long)v;
     return 0;
 }
 
@@ -101,10 +123,25 @@ static int parse_options(int argc, char **argv, cli_options *o)
             o->device = (int)v;
             ++i;
         } else if (!strcmp(a, "--particles")) {
-            if (!has_value || parse_int_option(argv[i + 1], 1, &v) || v > 2000000000LL)
+            if (!has_value || parse_count_option(argv[i + 1], &v))
                 return bad_usage("--particles takes a count from 1 to 2e9", has_value ? argv[i + 1] : NULL);
-            o->particles = v;
+            if (o->n_particles == AMSPH_BENCH_MAX_COUNTS)
+                return bad_usage("--particles is given more than 32 times", NULL);
+            o->particles[o->n_particles++] = v;
             ++i;
+        } else if (!strcmp(a, "--steps") || !strcmp(a, "--warmup")) {
+            if (!has_value || parse_int_option(argv[i + 1], !strcmp(a, "--steps"), &v) || v > 1000000)
+                return bad_usage(!strcmp(a, "--steps") ? "--steps takes a count from 1 to 1e6"
+                                                       : "--warmup takes a count from 0 to 1e6",
+                                 has_value ? argv[i + 1] : NULL);
+            *(!strcmp(a, "--steps") ? &o->steps : &o->warmup) = (int)v;
+            ++i;
+        } else if (!strcmp(a, "--csv")) {
+            if (!has_value)
+                return bad_usage("--csv needs a file", NULL);
+            o->csv = argv[++i];
+        } else if (!strcmp(a, "--quick")) {
+            o->quick = 1;
         } else if (!strcmp(a, "--repeat")) {
             if (!has_value || parse_int_option(argv[i + 1], 1, &v) || v > 100000)
                 return bad_usage("--repeat takes a count from 1 to 100000", has_value ? argv[i + 1] : NULL);
@@ -282,19 +319,50 @@ static int command_check(const cli_options *o)
     return status;
 }
 
-static int command_bench(const cli_options *o)
+static int bench_grid(const cli_options *o, amsph_backend *b)
 {
-    if (!o->case_path || strcmp(o->case_path, "grid"))
-        return bad_usage("bench knows: grid", o->case_path);
+    int status = 0;
+    for (int k = 0; k < (o->n_particles ? o->n_particles : 1) && !status; ++k)
+        status = amsph_bench_grid(b, o->n_particles ? o->particles[k] : 100000, o->repeat ? o->repeat : 10,
+                                  stdout);
+    return status;
+}
+
+static int bench_throughput(const cli_options *o, const amsph_case *c, amsph_backend *b)
+{
+    amsph_bench_options bench = {.n_particles = o->n_particles,
+                                 .warmup = o->warmup >= 0 ? o->warmup : o->quick ? 2 : 5,
+                                 .steps = o->steps ? o->steps : o->quick ? 3 : 20};
+    memcpy(bench.particles, o->particles, sizeof bench.particles);
+    if (o->csv && !(bench.csv = fopen(o->csv, "w")))
+        return amsph_bad_input("cannot write %s: %s", o->csv, strerror(errno));
+    const int status = amsph_bench_throughput(b, c, &bench, stdout);
+    if (bench.csv && fclose(bench.csv) && !status)
+        return amsph_fail("cannot write %s: %s", o->csv, strerror(errno));
+    return status;
+}
+
+/* `bench grid` or `bench throughput CASE` (what: the word after bench). */
+static int command_bench(const cli_options *o, const char *what)
+{
+    const char *case_path = o->case_path;
+    const int grid = what && !strcmp(what, "grid");
+    if (!grid && !(what && !strcmp(what, "throughput")))
+        return bad_usage("bench knows: grid, throughput", what);
+    amsph_case c;
+    if (grid && case_path)
+        return bad_usage("bench grid takes no case file", case_path);
+    if (!grid && load_case(case_path, &c))
+        return EXIT_BAD_INPUT;
     amsph_backend *b = NULL;
-    if (open_backend(o->backend ? o->backend : "openmp", o->device, &b))
+    const char *backend = grid || c.backend == AMSPH_BACKEND_OPENMP ? "openmp" : "opencl";
+    if (open_backend(o->backend ? o->backend : backend, o->device >= 0 ? o->device : grid ? -1 : c.device, &b))
         return 1;
-    const int status = amsph_bench_grid(b, o->particles ? o->particles : 100000,
-                                        o->repeat ? o->repeat : 10, stdout);
+    const int status = grid ? bench_grid(o, b) : bench_throughput(o, &c, b);
     if (status)
         fprintf(stderr, "amsph: %s\n", amsph_last_error());
     amsph_backend_destroy(b);
-    return status ? 1 : 0;
+    return status == AMSPH_BAD_INPUT ? EXIT_BAD_INPUT : status ? 1 : 0;
 }
 
 int main(int argc, char **argv)
@@ -304,8 +372,9 @@ int main(int argc, char **argv)
         return argc < 2 ? EXIT_BAD_INPUT : 0;
     }
     const char *command = argv[1];
-    cli_options o = {.device = -1, .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL};
-    int status = parse_options(argc - 2, argv + 2, &o);
+    cli_options o = {.device = -1, .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL, .warmup = -1};
+    const int options_from = !strcmp(command, "bench") && argc > 2 ? 3 : 2; /* after `bench WHAT` */
+    int status = parse_options(argc - options_from, argv + options_from, &o);
     if (status)
         return status;
     if (!strcmp(command, "run"))
@@ -325,6 +394,6 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(command, "bench"))
-        return command_bench(&o);
+        return command_bench(&o, argc > 2 ? argv[2] : NULL);
     return bad_usage("unknown command", command);
 }

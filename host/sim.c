@@ -64,13 +64,19 @@ static int upload_materials(amsph_sim *s)
  * particle, from the state after the drift. */
 static int compute_rates(amsph_sim *s, double dt)
 {
-    if (s->config.fluid.enabled)
+    if (s->config.fluid.enabled) {
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_DENSITY, NULL));
         AMSPH_CHECK(amsph_fluid_density(s, dt));
+    }
     if (s->config.laser.enabled && !s->config.thermal.enabled)
         AMSPH_CHECK(amsph_laser_absorb(s, s->time + dt));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_FORCES, NULL));
     if (s->config.fluid.enabled) {
         AMSPH_CHECK(amsph_fluid_forces(s));
-        return s->config.surface.enabled ? amsph_surface_forces(s) : 0;
+        if (!s->config.surface.enabled)
+            return 0;
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
+        return amsph_surface_forces(s);
     }
     amsph_particles *p = &s->particles;
     const double *g = s->config.gravity;
@@ -83,6 +89,8 @@ static int compute_rates(amsph_sim *s, double dt)
  * prescribed history, and the reference densities that follow it. */
 static int update_temperature(amsph_sim *s, double dt)
 {
+    if (s->config.thermal.enabled || s->config.temperature_history.enabled)
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_THERMAL, NULL));
     if (s->config.thermal.enabled)
         AMSPH_CHECK(amsph_thermal_advance(s, dt));
     else if (s->config.temperature_history.enabled)
@@ -285,6 +293,11 @@ void amsph_sim_state_free(amsph_sim_state *st)
     amsph_host_free(&st->last_good);
 }
 
+int amsph_sim_phase(amsph_sim *s, amsph_phase next, amsph_phase *previous)
+{
+    return amsph_timers_switch(&s->timers, s->backend, next, previous);
+}
+
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
 {
     amsph_particles *p = &s->particles;
@@ -295,7 +308,7 @@ int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
 
 /* Without the fluid module the limits are the kinematic CFL and the body
  * force (Fuchs et al. 2022 Eq. 42); the fluid module adds its own. */
-int amsph_sim_stable_dt(amsph_sim *s, double *dt)
+static int stable_dt(amsph_sim *s, double *dt)
 {
     *dt = INFINITY;
     s->dt_limit = "none";
@@ -328,6 +341,14 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
     return 0;
 }
 
+int amsph_sim_stable_dt(amsph_sim *s, double *dt)
+{
+    amsph_phase outside;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
+    AMSPH_CHECK(stable_dt(s, dt));
+    return amsph_sim_phase(s, outside, NULL);
+}
+
 static int kick(amsph_sim *s, double half_dt)
 {
     amsph_particles *p = &s->particles;
@@ -339,13 +360,17 @@ static int kick(amsph_sim *s, double half_dt)
 int amsph_sim_step(amsph_sim *s, double dt)
 {
     amsph_particles *p = &s->particles;
+    amsph_phase outside;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "drift", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
     AMSPH_CHECK(update_temperature(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, NULL));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     if (s->config.fluid.damping_rate > 0.0 && s->time < s->config.fluid.damping_end)
         AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "damp_velocity", p->n,
@@ -355,11 +380,14 @@ int amsph_sim_step(amsph_sim *s, double dt)
     s->time += dt;
     s->dt = dt;
     ++s->step;
-    if (!s->config.fluid.enabled)
-        return 0;
-    if (amsph_guards_check(s)) {
-        s->guard_failed = 1;
-        return 1;
+    if (s->config.fluid.enabled) {
+        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_GUARDS, NULL));
+        if (amsph_guards_check(s)) {
+            s->guard_failed = 1;
+            return 1;
+        }
+        if (s->step % LAST_GOOD_INTERVAL == 0)
+            AMSPH_CHECK(keep_last_good(s));
     }
-    return s->step % LAST_GOOD_INTERVAL == 0 ? keep_last_good(s) : 0;
+    return amsph_sim_phase(s, outside, NULL);
 }

@@ -16,6 +16,7 @@
 #include "case.h"
 #include "grid.h"
 #include "particles.h"
+#include "timers.h"
 #define AMSPH_SHARED_REAL amsph_real
 #include "fluid_params.h"
 #include "surface_params.h"
@@ -82,6 +83,7 @@ typedef struct {
     double last_good_time;
     long long last_good_step;
     int guard_failed; /* the last step failed a guard (the error says which) */
+    amsph_timers timers; /* off unless a benchmark turns them on */
 } amsph_sim;
 
 /* The sim's scalar state, which a checkpoint saves and a restart restores:
@@ -146,6 +148,10 @@ int amsph_sim_save(amsph_sim *s, amsph_sim_state *st);
  * has in this build is refused as bad input. */
 int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_state *st, amsph_sim *s);
 void amsph_sim_state_free(amsph_sim_state *st);
+
+/* Switches the sim's timers to phase `next` (host/timers.h): a module calls
+ * it before its kernels, and a nested one switches back to *previous. */
+int amsph_sim_phase(amsph_sim *s, amsph_phase next, amsph_phase *previous);
 
 /* Largest |v| over the particles of a 3-vector field (velocity, acceleration). */
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out);

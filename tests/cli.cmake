@@ -116,6 +116,22 @@ if(TIMEOUT)
   endif()
 endif()
 
+# amsph bench throughput: a tiny run prints its table (tests/test_bench.c
+# checks the numbers' structure); bad input exits with status 2.
+set(dambreak_2d ${SOURCE}/cases/validation/dambreak_2d.yaml)
+expect_status(0 ${AMSPH} bench throughput ${dambreak_2d} --particles 500 --warmup 0 --steps 1)
+expect_text("| particles | ms/step | particle-steps/s | device bytes/particle | sort |")
+expect_status(2 ${AMSPH} bench throughput)
+expect_text("a case file is needed")
+expect_status(2 ${AMSPH} bench frobnicate)
+expect_text("bench knows: grid, throughput")
+expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --particles 1.5)
+expect_text("--particles takes a count from 1 to 2e9: 1.5")
+expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --steps 0)
+expect_text("--steps takes a count from 1 to 1e6: 0")
+expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --csv ${WORK}/plain/bench.csv)
+expect_text("cannot write ${WORK}/plain/bench.csv")
+
 # README.md carries the series.csv column reference that `amsph columns` prints.
 execute_process(COMMAND ${AMSPH} columns OUTPUT_VARIABLE columns RESULT_VARIABLE status)
 file(READ ${SOURCE}/README.md readme)

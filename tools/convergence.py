@@ -194,6 +194,27 @@ def run(amsph, case_text, dx, backend, work, strip, edit):
     return outdir, particles, steps, wall
 
 
+def sweep(case, dxs, amsph="build/amsph", backend="openmp"):
+    """Runs CASE at each spacing, coarsest first, and yields one dict per run:
+    dx, particles, steps, wall (s), error and the observed order against the
+    previous run (None for the first), and the case's EXTRA measure (or None)."""
+    case_file, measure = CASES[case]
+    with open(case_file) as f:
+        text = f.read()
+    previous = None
+    with tempfile.TemporaryDirectory() as work:
+        for dx in sorted(dxs, reverse=True):
+            outdir, particles, steps, wall = run(amsph, text, dx, backend, work, case in STRIPS, EDIT.get(case))
+            error = measure(outdir)
+            order = None
+            if previous and error > 0 and previous[1] > 0:
+                order = math.log(previous[1] / error) / math.log(previous[0] / dx)
+            extra = EXTRA.get(case)
+            yield {"dx": dx, "particles": particles, "steps": steps, "wall": wall, "error": error, "order": order,
+                   "extra": extra[1](outdir) if extra else None}
+            previous = (dx, error)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("case", choices=sorted(CASES))
@@ -201,26 +222,15 @@ def main():
     ap.add_argument("--amsph", default="build/amsph")
     ap.add_argument("--backend", default="openmp", choices=["openmp", "opencl"])
     args = ap.parse_args()
-    case_file, measure = CASES[args.case]
-    with open(case_file) as f:
-        text = f.read()
-    extra_name, extra = EXTRA.get(args.case, (None, None))
+    extra_name = EXTRA[args.case][0] if args.case in EXTRA else None
     print(f"| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |"
-          + (f" {extra_name} |" if extra else ""))
-    print(f"|---|---|---|---|---|---|---|---|---|" + ("---|" if extra else ""))
-    previous = None
-    with tempfile.TemporaryDirectory() as work:
-        for dx in sorted(args.dx, reverse=True):
-            outdir, particles, steps, wall = run(args.amsph, text, dx, args.backend, work, args.case in STRIPS,
-                                                 EDIT.get(args.case))
-            error = measure(outdir)
-            order = ""
-            if previous and error > 0 and previous[1] > 0:
-                order = f"{math.log(previous[1] / error) / math.log(previous[0] / dx):.2f}"
-            print(f"| {args.case} | {args.backend} | {dx:g} | {particles} | {steps} | {wall:.1f} | "
-                  f"{particles * steps / wall:.3g} | {error:.3e} | {order} |"
-                  + (f" {extra(outdir)} |" if extra else ""), flush=True)
-            previous = (dx, error)
+          + (f" {extra_name} |" if extra_name else ""))
+    print(f"|---|---|---|---|---|---|---|---|---|" + ("---|" if extra_name else ""))
+    for r in sweep(args.case, args.dx, args.amsph, args.backend):
+        order = "" if r["order"] is None else f"{r['order']:.2f}"
+        print(f"| {args.case} | {args.backend} | {r['dx']:g} | {r['particles']} | {r['steps']} | {r['wall']:.1f} | "
+              f"{r['particles'] * r['steps'] / r['wall']:.3g} | {r['error']:.3e} | {order} |"
+              + (f" {r['extra']} |" if extra_name else ""), flush=True)
 
 
 if __name__ == "__main__":
