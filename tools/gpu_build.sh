@@ -22,17 +22,22 @@ cd "$(dirname "$0")/.."
 source_dir=$PWD
 bundle=$(realpath -m "${1:-gpu-bundle}")
 jobs=${AMSPH_JOBS:-2}
+arch=sm_80 # PTX of GCC 12's newest target; the driver compiles it for the H100 (sm_90)
 
 # glibc's own libraries: the machine's must be used, with its loader.
 glibc='^(ld-linux-x86-64\.so\.2|libc\.so\.6|libm\.so\.6|libmvec\.so\.1|libpthread\.so\.0|libdl\.so\.2|librt\.so\.1|libresolv\.so\.2|libutil\.so\.1|libanl\.so\.1)$'
 
-build() { # name, cmake options...
-    local dir=build-gpu-$1
-    shift
-    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DAMSPH_DOUBLE=OFF -DAMSPH_WERROR=ON \
-        -DCMAKE_SKIP_BUILD_RPATH=ON \
-        "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--disable-new-dtags -Wl,-rpath,\$ORIGIN/../lib" "$@" >/dev/null
-    cmake --build "$dir" -j"$jobs" >/dev/null
+build() { # name, offload (empty or nvptx)
+    local dir=build-gpu-$1 log
+    log=$(mktemp)
+    {
+        cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DAMSPH_OPENCL=ON -DAMSPH_OPENMP=ON \
+            -DAMSPH_DOUBLE=OFF -DAMSPH_WERROR=ON -DAMSPH_OPENMP_OFFLOAD="$2" -DAMSPH_OFFLOAD_ARCH=$arch \
+            -DCMAKE_SKIP_BUILD_RPATH=ON \
+            "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--disable-new-dtags -Wl,-rpath,\$ORIGIN/../lib" &&
+            cmake --build "$dir" -j"$jobs"
+    } >"$log" 2>&1 || { tail -40 "$log" >&2; echo "gpu_build: building $dir failed" >&2; exit 1; }
+    rm -f "$log"
 }
 
 # Copies build $1's executables and their test list into the bundle.
@@ -99,7 +104,7 @@ manifest() {
         echo "source: $(git rev-parse HEAD)$(git diff --quiet HEAD -- . || echo ' (with uncommitted changes)')"
         echo "compiler: $(gcc --version | head -1)"
         echo "host: AMSPH_OPENCL=ON AMSPH_OPENMP=ON, Release, float"
-        echo "offload: as host, with AMSPH_OPENMP_OFFLOAD=nvptx AMSPH_OFFLOAD_ARCH=sm_80"
+        echo "offload: as host, with AMSPH_OPENMP_OFFLOAD=nvptx AMSPH_OFFLOAD_ARCH=$arch"
         echo "glibc needed: $(find "$bundle" -type f \( -perm -u+x -o -name '*.so*' \) \
             -exec objdump -T {} + 2>/dev/null | grep -o 'GLIBC_2\.[0-9]*' | sort -t. -k2 -n -u |
             tail -1 | cut -d_ -f2)"
@@ -107,8 +112,8 @@ manifest() {
 }
 
 rm -rf "$bundle" "$bundle.tar.gz"
-build host
-build offload -DAMSPH_OPENMP_OFFLOAD=nvptx
+build host ""
+build offload nvptx
 pack host
 pack offload
 pack_libraries
