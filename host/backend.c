@@ -61,7 +61,13 @@ void amsph_backend_destroy(amsph_backend *b)
 void amsph_backend_list(void *file)
 {
     FILE *f = file;
-    fprintf(f, "openmp: host threads\n");
+    amsph_backend *openmp = NULL;
+    if (amsph_backend_openmp_create(&openmp) == 0) {
+        fprintf(f, "openmp: %s\n", openmp->description);
+        openmp->iface->destroy(openmp);
+    } else {
+        fprintf(f, "openmp: unavailable: %s\n", amsph_last_error());
+    }
 #if AMSPH_HAVE_OPENCL
     amsph_backend_opencl_list(f);
 #else

@@ -5,6 +5,8 @@
  * build as compiler flags):
  *   AMSPH_DIM     2 or 3
  *   AMSPH_DOUBLE  1 for double precision, 0 for float
+ *   AMSPH_OMP_OFFLOAD  1 where the C build's loops run on an OpenMP target
+ *                 device (CMake AMSPH_OPENMP_OFFLOAD), 0 or undefined otherwise
  *
  * Rules for kernel code, so that both worlds accept it:
  *   - a kernel is `KERNEL void name(args)` on one declaration; buffer
@@ -12,7 +14,8 @@
  *   - the work-item loop is `FOR_EACH_ITEM(i, n) { ... }`, with no `return`
  *     or `continue` at its top level (the C form is an OpenMP `for`);
  *   - helpers are `static inline`; no vector-type arithmetic (float4 + float4),
- *     use scalar components;
+ *     use scalar components; no file-scope variables (an offloaded loop
+ *     reaches only the kernel's arguments and locals);
  *   - a pair loop gathers: item a reads b and writes only a, so no atomics
  *     are needed except in the grid's histogram and scatter. */
 #ifndef AMSPH_DEVICE_H
@@ -39,7 +42,18 @@
 #include <tgmath.h> /* sqrt, fmax, ... on `real` as in OpenCL */
 #define KERNEL static
 #define GLOBAL
-#ifdef _OPENMP
+#if defined(_OPENMP) && AMSPH_OMP_OFFLOAD
+/* Each loop is a target region on the default device. Every buffer has a
+ * device copy associated with its host addresses (host/backend_openmp.c), and
+ * a pointer used in a target region without a map clause is translated to the
+ * device address of the storage it points to (OpenMP 5.0 §2.19.7: a
+ * zero-length array section); values and structs are copied in. Helpers
+ * called from the loop are compiled for the device as implicitly
+ * `declare target` (OpenMP 5.0 §2.12.7). */
+#define FOR_EACH_ITEM(i, n)                                                                        \
+    _Pragma("omp target teams distribute parallel for defaultmap(firstprivate: aggregate)")        \
+    for (int i = 0; i < (n); ++i)
+#elif defined(_OPENMP)
 #define FOR_EACH_ITEM(i, n)                                                                        \
     _Pragma("omp parallel for schedule(static)") for (int i = 0; i < (n); ++i)
 #else

@@ -57,11 +57,14 @@ static inline amsph_backend *testing_backend(int k)
 
 #define TESTING_BACKENDS 2
 
-/* Loads cases/validation/<relative> (a failure fails the test). */
+/* Loads cases/validation/<relative> of the source tree (a failure fails the
+ * test); AMSPH_SOURCE_DIR in the environment names the tree where the tests
+ * run away from the one they were built from (tools/gpu_run.sh). */
 static inline int testing_load_case(const char *relative, amsph_case *c)
 {
     char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/cases/validation/%s", AMSPH_SOURCE_DIR, relative);
+    const char *source = getenv("AMSPH_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/cases/validation/%s", source ? source : AMSPH_SOURCE_DIR, relative);
     const int status = amsph_case_load(path, c, err, sizeof err);
     CHECK(status == 0, "%s", err);
     return status;
