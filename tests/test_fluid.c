@@ -270,8 +270,8 @@ static void test_guard_stops_run(void)
         "  - {shape: box, kind: fluid, material: water, min: [0.2, 0.4], max: [0.45, 0.6], velocity: [5, 0]}\n"
         "  - {shape: box, kind: fluid, material: water, min: [0.55, 0.4], max: [0.8, 0.6], velocity: [-5, 0]}\n";
     amsph_case c;
-    char err[512], dir[] = "/tmp/amsph_test_guard_XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char err[512], dir[256];
+    testing_temp_dir(dir, sizeof dir, "guard");
     CHECK(amsph_case_parse(text, strlen(text), "guard.yaml", &c, err, sizeof err) == 0, "%s", err);
     amsph_sim s;
     amsph_backend *b = start_sim(&c, &s);

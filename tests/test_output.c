@@ -241,8 +241,8 @@ static double cell(char **cells, const char *name)
  * 1 ms part of it has melted (so latent heat is in the ledger). */
 static void test_series_ledger(void)
 {
-    char dir[] = "/tmp/amsph_test_output_ledger_XXXXXX", path[600], line[4096], *cells[64];
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char dir[256], path[600], line[4096], *cells[64];
+    testing_temp_dir(dir, sizeof dir, "output_ledger");
     amsph_case c;
     char err[512];
     CHECK(amsph_case_parse(heated_slab, strlen(heated_slab), "slab.yaml", &c, err, sizeof err) == 0, "%s", err);
@@ -295,8 +295,8 @@ static void test_series_ledger(void)
 
 int main(void)
 {
-    char dir[] = "/tmp/amsph_test_output_XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char dir[256];
+    testing_temp_dir(dir, sizeof dir, "output");
     amsph_case c;
     char err[512];
     CHECK(amsph_case_parse(text, strlen(text), "output.yaml", &c, err, sizeof err) == 0, "%s", err);

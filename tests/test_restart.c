@@ -271,13 +271,6 @@ static int count_text(const char *path, const char *text)
     return count;
 }
 
-/* An empty directory under /tmp (its name in dir). */
-static void make_dir(char *dir, size_t size, const char *tag)
-{
-    snprintf(dir, size, "/tmp/amsph_test_restart_%s_XXXXXX", tag);
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp %s", dir);
-}
-
 /* The case `text` run straight to step 200, and stopped at step 100 and
  * restarted to 200 in the checkpoint's directory and in another, on
  * backend k. */
@@ -289,12 +282,12 @@ static void test_bit_identical(int k, const char *text, const char *tag)
     amsph_case c;
     parse(text, &c);
     char straight[128], stopped[128], elsewhere[128], from[600], label[64];
-    snprintf(label, sizeof label, "%s_straight", tag);
-    make_dir(straight, sizeof straight, label);
-    snprintf(label, sizeof label, "%s_stopped", tag);
-    make_dir(stopped, sizeof stopped, label);
-    snprintf(label, sizeof label, "%s_elsewhere", tag);
-    make_dir(elsewhere, sizeof elsewhere, label);
+    snprintf(label, sizeof label, "restart_%s_straight", tag);
+    testing_temp_dir(straight, sizeof straight, label);
+    snprintf(label, sizeof label, "restart_%s_stopped", tag);
+    testing_temp_dir(stopped, sizeof stopped, label);
+    snprintf(label, sizeof label, "restart_%s_elsewhere", tag);
+    testing_temp_dir(elsewhere, sizeof elsewhere, label);
     join(from, sizeof from, stopped, "checkpoint.h5");
     CHECK_OK(run_case(b, &c, straight, 200, NULL, NULL));
     CHECK_OK(run_case(b, &c, stopped, 100, NULL, NULL));
@@ -519,7 +512,7 @@ static void test_stop_request(amsph_backend *b)
     amsph_case c;
     parse(dambreak, &c);
     char dir[128];
-    make_dir(dir, sizeof dir, "stop");
+    testing_temp_dir(dir, sizeof dir, "restart_stop");
     static volatile sig_atomic_t stop = SIGTERM;
     CHECK_OK(run_case(b, &c, dir, 0, NULL, &stop));
     amsph_checkpoint ck = {0};
@@ -535,7 +528,7 @@ static void test_periodic_checkpoint(amsph_backend *b)
     amsph_case c;
     parse(cube_3d, &c);
     char dir[128];
-    make_dir(dir, sizeof dir, "periodic");
+    testing_temp_dir(dir, sizeof dir, "restart_periodic");
     amsph_sim s;
     const amsph_run_options options = {.outdir = dir, .quiet = 1, .checkpoint_interval = 1e-9};
     CHECK_OK(amsph_sim_create(&c, b, &s));
@@ -558,7 +551,7 @@ int main(void)
     amsph_case c;
     parse(dambreak, &c);
     char dir[128];
-    make_dir(dir, sizeof dir, "refusals");
+    testing_temp_dir(dir, sizeof dir, "restart_refusals");
     CHECK_OK(run_case(b, &c, dir, 20, NULL, NULL));
     test_refusals(b, dir);
     test_full_disk(b, dir);

@@ -5,9 +5,11 @@
 #ifndef AMSPH_TESTING_H
 #define AMSPH_TESTING_H
 
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "backend.h"
 #include "case.h"
@@ -30,9 +32,47 @@ static int testing_passed, testing_failed;
 /* Fails the test on a non-zero library status, with the library's message. */
 #define CHECK_OK(call) CHECK((call) == 0, "%s", amsph_last_error())
 
+/* Output directories of a test: made by testing_temp_dir, removed by
+ * testing_finish when every check passed, kept (and named) for a look at
+ * what went wrong otherwise. They hold files only. */
+#define TESTING_MAX_TEMP_DIRS 64
+static char testing_temp_dirs[TESTING_MAX_TEMP_DIRS][256];
+static int testing_n_temp_dirs;
+
+/* Makes the directory /tmp/amsph_test_<tag>_XXXXXX; its name into dir. */
+static inline int testing_temp_dir(char *dir, size_t size, const char *tag)
+{
+    const int fits = snprintf(dir, size, "/tmp/amsph_test_%s_XXXXXX", tag) < (int)size && size <= 256;
+    const int made = fits && mkdtemp(dir) != NULL;
+    CHECK(made, "mkdtemp %s", dir);
+    if (made && testing_n_temp_dirs < TESTING_MAX_TEMP_DIRS)
+        strcpy(testing_temp_dirs[testing_n_temp_dirs++], dir);
+    return made ? 0 : -1;
+}
+
+static inline void testing_remove_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    char path[512];
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 &&
+            snprintf(path, sizeof path, "%s/%.255s", dir, e->d_name) < (int)sizeof path)
+            unlink(path);
+    closedir(d);
+    rmdir(dir);
+}
+
 static inline int testing_finish(void)
 {
     printf("%d passed, %d failed\n", testing_passed, testing_failed);
+    for (int k = 0; k < testing_n_temp_dirs; ++k) {
+        if (testing_failed)
+            fprintf(stderr, "kept for inspection: %s\n", testing_temp_dirs[k]);
+        else
+            testing_remove_dir(testing_temp_dirs[k]);
+    }
     return testing_failed ? 1 : 0;
 }
 
