@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "thermal.h"
 
 #define PI 3.14159265358979323846
 #define MAX_BIN_NODES 100000000 /* 100 M nodes: 1.2 GB of bins in float */
@@ -115,6 +116,8 @@ int amsph_laser_setup(amsph_sim *s, amsph_host_particles *h)
     p->bin_size = (amsph_real)l->bin_size;
     const int volumetric = l->absorption == AMSPH_ABSORPTION_VOLUMETRIC;
     p->absorption = (amsph_real)(volumetric ? l->absorption_coefficient : l->absorptivity);
+    if (!volumetric)
+        AMSPH_CHECK(amsph_surface_delta(s, 0.0, &p->surface_delta));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LASER_POWER));
     return volumetric ? lay_out_bins(s) : 0;
 }

@@ -105,6 +105,22 @@ int amsph_thermal_nodes(const amsph_material *m, double *temperature, double *en
     return count;
 }
 
+int amsph_surface_delta(amsph_sim *s, double cutoff, amsph_real *delta)
+{
+    amsph_buffer *out = NULL;
+    amsph_real integral = 0;
+    AMSPH_CHECK(amsph_buffer_alloc(s->backend, sizeof integral, &out));
+    int status = AMSPH_LAUNCH(s->backend, "flat_face_delta", 1, amsph_arg_real(s->h), amsph_arg_real(s->config.dx),
+                              amsph_arg_real(cutoff), amsph_arg_buffer(out));
+    if (!status)
+        status = amsph_download(s->backend, out, 0, sizeof integral, &integral);
+    amsph_buffer_free(s->backend, out);
+    if (!status && !(integral > 0))
+        status = amsph_fail("no row of a flat lattice face reaches the surface cut-off %g", cutoff);
+    *delta = status ? 0 : 1 / integral;
+    return status;
+}
+
 int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h)
 {
     static const amsph_field_id fields[] = {AMSPH_FIELD_ENTHALPY, AMSPH_FIELD_ENTHALPY_RATE,
@@ -118,6 +134,8 @@ int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h)
     p->ambient_temperature = (amsph_real)t->ambient_temperature;
     p->surface_cutoff = (amsph_real)0.1; /* PHYSICS.md erratum 5: |n| h against ~0.1 */
     p->radiation = t->radiation;
+    if (p->radiation)
+        AMSPH_CHECK(amsph_surface_delta(s, p->surface_cutoff, &p->surface_delta));
     p->viscous_heating = t->viscous_heating;
     p->phase_change_kinds = s->config.fluid.enabled;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)

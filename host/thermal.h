@@ -8,6 +8,12 @@
 #include "sim.h"
 #include "thermal_table.h"
 
+/* The factor c of the surface delta c |grad Gamma| that integrates to 1
+ * across a flat lattice face, counting the particles with |grad Gamma| h at
+ * or above `cutoff` (kernels/thermal.cl flat_face_delta, computed on the
+ * sim's backend for its kernel, h and dx). */
+int amsph_surface_delta(amsph_sim *s, double cutoff, amsph_real *delta);
+
 /* Adds the module's fields to the host particles. */
 int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h);
 /* The device tables and scratch buffers (also for a restart, whose state

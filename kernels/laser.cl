@@ -249,14 +249,15 @@ KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *m
  * with the colour gradient grad Gamma_a = sum_b V_b grad_a W_ab over every
  * particle (fluid, wall and solid are all material), the outward normal
  * n_a = -grad Gamma_a / |grad Gamma_a| and the surface delta
- * delta_a = 2 |grad Gamma_a|. Then <-n . e_l> delta = 2 <grad Gamma . e_l>,
- * which needs no cut-off where |grad Gamma| vanishes. The factor 2: with no
- * particles outside, the sum over the material sees only the inner half of
- * the jump of Gamma (Gamma = 1/2 on the surface), so sum_a V_a |grad Gamma_a|
- * over a flat face is half its area; 2 makes the face absorb zeta times the
- * power that falls on it, to the accuracy of the kernel's gradient on the
- * lattice (tested: quintic within 0.1%; Wendland C2 at h = 1.2 dx 1.5% low
- * in 3D, 3.6% in 2D). No shadowing: every face turned to the beam is lit. */
+ * delta_a = c |grad Gamma_a|. Then <-n . e_l> delta = c <grad Gamma . e_l>,
+ * which needs no cut-off where |grad Gamma| vanishes. With no particles
+ * outside, the sum over the material sees only the inner half of the jump
+ * of Gamma (Gamma = 1/2 on the surface), so c = 2 would make a flat face
+ * absorb zeta times the power that falls on it to the accuracy of the
+ * kernel's lattice gradient (the quintic within 0.1%, Wendland C2 at
+ * h = 1.2 dx 1.5% low in 3D, 3.6% in 2D); c = p.surface_delta, the inverse
+ * of flat_face_delta (kernels/thermal.cl) without a cut-off, makes it exact
+ * on a lattice face. No shadowing: every face turned to the beam is lit. */
 KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, GLOBAL const int *cell, int n,
                                  grid_geometry g, GLOBAL const int *cell_start, laser_params p,
@@ -287,7 +288,7 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         for (int k = 0; k < AMSPH_DIM - 1; ++k)
             r2 += q[k] * q[k];
         const real facing = fmax(REAL(0.0), dot3(grad, p.direction));
-        laser_power[a] = p.absorption * laser_irradiance(&p, r2) * REAL(2.0) * facing;
+        laser_power[a] = p.absorption * laser_irradiance(&p, r2) * p.surface_delta * facing;
         absorbed[a] = laser_power[a] * mass[a] / density[a];
     }
 }

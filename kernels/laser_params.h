@@ -28,6 +28,7 @@ typedef struct {
     AMSPH_SHARED_REAL peak_intensity; /* 2 P / (pi r_l^2) at the current power, W/m^2 */
     AMSPH_SHARED_REAL radius;         /* 1/e^2 radius r_l, m */
     AMSPH_SHARED_REAL absorption;     /* volumetric: alpha, 1/m; surface: zeta */
+    AMSPH_SHARED_REAL surface_delta;  /* surface: delta = this |grad Gamma| (flat_face_delta) */
     int lateral_nodes;                /* nodes across the beam per lateral axis (odd) */
     int depth_nodes;                  /* nodes along the beam */
 } laser_params;

@@ -154,17 +154,54 @@ static inline real viscous_dissipation(const real g_raw[3][3], const real m[3][3
 
 /* Radiation from a free surface (Russell 2018 Eq. 3.39), per unit volume:
  *   s_rad = sigma_B eps (T^4 - T_inf^4) delta,
- * with the surface delta delta = 2 |grad Gamma| in place of 1 / dz: the
+ * with the surface delta delta = c |grad Gamma| in place of 1 / dz: the
  * Shepard sum Gamma = sum_b V_b W_ab falls from 1 to about 1/2 across the
- * outermost particles (there is nothing outside to sum), so twice its
- * gradient integrates to the surface area (tested on a flat slab). Below
- * the cut-off |grad Gamma| h the particle is interior. */
+ * outermost particles (there is nothing outside to sum), so c = 2 would
+ * make it integrate to the surface area; c = p->surface_delta makes it do so
+ * exactly on a flat lattice face, the cut-off included (flat_face_delta).
+ * Below the cut-off |grad Gamma| h the particle is interior. */
 static inline real radiation_loss(real temp, real emissivity, real grad_gamma, const thermal_params *p)
 {
     if (grad_gamma * p->h < p->surface_cutoff)
         return REAL(0.0);
     const real t2 = temp * temp, ambient2 = p->ambient_temperature * p->ambient_temperature;
-    return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * REAL(2.0) * grad_gamma;
+    return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * p->surface_delta * grad_gamma;
+}
+
+/* The integral across a flat face of a square (cubic) lattice of spacing dx
+ * of |grad Gamma| = |sum_b V_b grad_a W_ab| over the particles whose
+ * |grad Gamma| h reaches `cutoff`: sum over the rows j under the face of
+ * dx |grad Gamma_j|, row j at depth (j + 1/2) dx, its neighbours every
+ * lattice point at or below the face. Continuous: 1/2 (Gamma falls from 1
+ * to 1/2); the sampled rows, the kernel's lattice moments and the cut-off
+ * make it a few percent less. The surface deltas of the radiation and of
+ * the laser's surface absorption divide by it. One work item. */
+KERNEL void flat_face_delta(real h, real dx, real cutoff, GLOBAL real *integral)
+{
+    FOR_EACH_ITEM(item, 1)
+    {
+        const real support2 = SUPPORT_OVER_H * SUPPORT_OVER_H * h * h;
+        const int reach = (int)ceil(SUPPORT_OVER_H * h / dx);
+        const int lateral3 = AMSPH_DIM == 3 ? reach : 0;
+        real volume = dx;
+        for (int d = 1; d < AMSPH_DIM; ++d)
+            volume *= dx;
+        real sum = REAL(0.0);
+        for (int j = 0; j <= reach; ++j) {
+            real grad = REAL(0.0); /* along the outward normal; across it the sum cancels */
+            for (int k = 0; k <= j + reach; ++k)
+                for (int i = -reach; i <= reach; ++i)
+                    for (int l = -lateral3; l <= lateral3; ++l) {
+                        const real z = (real)(k - j) * dx; /* z_a - z_b, up the normal */
+                        const real r2 = (real)(i * i + l * l) * dx * dx + z * z;
+                        if (r2 > REAL(0.0) && r2 < support2)
+                            grad += volume * smoothing_grad_factor(sqrt(r2), h) * z;
+                    }
+            if (fabs(grad) * h >= cutoff)
+                sum += dx * fabs(grad);
+        }
+        integral[item] = sum;
+    }
 }
 
 /* The enthalpy rate of every particle (walls too: their rate is the heat

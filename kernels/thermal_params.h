@@ -12,6 +12,7 @@ typedef struct {
     AMSPH_SHARED_REAL eta2;                /* 0.01 h^2, keeps 1/r^2 finite, m^2 */
     AMSPH_SHARED_REAL ambient_temperature; /* T_inf of the radiation, K */
     AMSPH_SHARED_REAL surface_cutoff;      /* |grad Gamma| h below this: not a surface */
+    AMSPH_SHARED_REAL surface_delta;       /* delta = this |grad Gamma| (flat_face_delta) */
     int radiation;                         /* 1: free surfaces radiate */
     int viscous_heating;                   /* 1: viscous dissipation heats the fluid */
     int phase_change_kinds;                /* 1: melted solid becomes fluid and back */
