@@ -4,7 +4,8 @@
  *     its curvature is 0 (and the surface loop wraps a periodic axis);
  *   - sigma(T) of 304 steel (Sahoo et al. 1988) against the formula;
  *   - the capillary time step (PHYSICS.md erratum 3);
- *   - Young-Laplace: a 2D droplet at rest holds sigma/R inside (erratum 1);
+ *   - Young-Laplace: a droplet at rest holds (d - 1) sigma/R inside
+ *     (erratum 1), in 2D and 3D;
  *   - thermocapillary return flow in a closed layer: the profile
  *     u(y) = tau d / (4 mu) (3 (y/d)^2 - 2 y/d), tau = d sigma/dT dT/dx;
  *   - a square patch relaxes to the circle of its area, at rest;
@@ -195,9 +196,9 @@ static void droplet_state(const amsph_host_particles *h, double radius, double *
 
 /* Russell 2018 §4.2 with the right law (erratum 1): a droplet of radius
  * R = 1 m with sigma = 10 N/m holds (d - 1) sigma / R inside, within
- * `tolerance`, and stays at rest after the relaxation damping ends (speed
- * below 1% of sqrt(sigma/(rho R)) = 0.1 m/s). */
-static void check_young_laplace(const char *file, double tolerance)
+ * `tolerance`, and after the relaxation damping ends its largest speed
+ * stays below `speed_limit`. */
+static void check_young_laplace(const char *file, double tolerance, double speed_limit)
 {
     amsph_case c;
     amsph_host_particles h = {0};
@@ -209,15 +210,23 @@ static void check_young_laplace(const char *file, double tolerance)
                c.dim, pressure, expected, speed);
         CHECK(fabs(pressure / expected - 1.0) < tolerance, "pressure inside the %dD droplet %g Pa, expected %g Pa",
               c.dim, pressure, expected);
-        CHECK(speed < 1e-3, "the droplet is not at rest: largest speed %g m/s", speed);
+        CHECK(speed < speed_limit, "the droplet is not at rest: largest speed %g m/s", speed);
     }
     amsph_host_free(&h);
 }
 
-/* 2D at R = 20 dx: within 5% (the thesis's scheme was 40% off). */
+/* 2D at R = 20 dx: within 5% (the thesis's scheme was 40% off), at rest to
+ * 1% of the capillary speed sqrt(sigma/(rho R)) = 0.1 m/s. 3D at R = 10 dx
+ * (young_laplace_3d.yaml, 4224 particles): the law 2 sigma/R within 10% (a
+ * 2D law sigma/R would read 50% low); the error at R = 10 dx is +7.2% in 2D
+ * as well, and the 3D droplet reaches the 5% goal at R = 20 dx (+4.7%,
+ * 33552 particles, too long for a test; BENCHMARKS.md). Its parasitic speed
+ * at R = 10 dx is 3.4% of the capillary speed (0.8% at R = 20 dx), so rest
+ * is not checked there. */
 static void test_young_laplace(void)
 {
-    check_young_laplace("young_laplace_2d.yaml", 0.05);
+    check_young_laplace("young_laplace_2d.yaml", 0.05, 1e-3);
+    check_young_laplace("young_laplace_3d.yaml", 0.10, INFINITY);
 }
 
 /* A 1 m x 1 m square patch (sigma = 10 N/m, no gravity, no damping)
