@@ -118,27 +118,13 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
     }
 }
 
-/* 1 when the ball of radius `reach` (at most a cell size) about x misses
- * the k-th of the 3^d cells around cc (grid_neighbour_cell's order): along
- * each axis the ball reaches at most one neighbouring cell, so 2^d of the
- * 3^d cells can hold particles within reach. */
-static inline int laser_ball_misses_cell(const grid_geometry *g, const real x[3], const int cc[3], int k, real reach)
-{
-    for (int d = 0; d < AMSPH_DIM; ++d, k /= 3) {
-        const real lower = g->lo[d] + (real)(cc[d] + k % 3 - 1) * g->cell_size;
-        if (x[d] + reach < lower || x[d] - reach > lower + g->cell_size)
-            return 1;
-    }
-    return 0;
-}
-
 /* Step 1 (Russell 2018 §3.2.2, "sum all particle contributions to a given
  * bin"): node n gathers, over the particles p around it,
  *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
  * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
  * the host keeps within one cell size: the 2^d of the 3^d cells around that
- * the ball of that radius touches hold them all; the others in those cells
- * are passed over by their distance. */
+ * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR_NEAR);
+ * the others in those cells are passed over by their distance. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, grid_geometry g,
                                  GLOBAL const int *cell_start, laser_params p, int nodes,
@@ -164,22 +150,18 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         laser_cell_near(&g, x, cc);
         const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        for (int k = 0; k < NEIGHBOUR_CELLS(1); ++k) {
-            const int c = grid_neighbour_cell(&g, cc, k, 1);
-            if (c < 0 || laser_ball_misses_cell(&g, x, cc, k, sqrt(reach2)))
-                continue;
-            for (int b = cell_start[c]; b < cell_start[c + 1]; ++b) {
-                real r[3];
-                for (int d = 0; d < 3; ++d)
-                    r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
-                if (dot3(r, r) < reach2) {
-                    real offset[AMSPH_DIM];
-                    for (int j = 0; j < AMSPH_DIM; ++j)
-                        offset[j] = dot3(r, axis[j]) / p.bin_size;
-                    const real w = laser_pic_weight(offset);
-                    sum_w += w;
-                    sum_wv += w * mass[b] / density[b];
-                }
+        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, 1, sqrt(reach2))
+        {
+            real r[3];
+            for (int d = 0; d < 3; ++d)
+                r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
+            if (dot3(r, r) < reach2) {
+                real offset[AMSPH_DIM];
+                for (int k = 0; k < AMSPH_DIM; ++k)
+                    offset[k] = dot3(r, axis[k]) / p.bin_size;
+                const real w = laser_pic_weight(offset);
+                sum_w += w;
+                sum_wv += w * mass[b] / density[b];
             }
         }
         bin_weight[node] = sum_w;

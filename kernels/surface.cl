@@ -64,6 +64,13 @@ static inline real surface_tension(GLOBAL const real *materials, int material, r
     return sigma;
 }
 
+/* Squared support radius of the surface terms: farther pairs add nothing,
+ * and most of the (2 reach + 1)^d cells' particles are farther. */
+static inline real surface_support2(const surface_params *p)
+{
+    return SUPPORT_OVER_H * SUPPORT_OVER_H * p->h * p->h;
+}
+
 static inline real normal_size(GLOBAL const real *normal, int a)
 {
     return sqrt(normal[3 * a] * normal[3 * a] + normal[3 * a + 1] * normal[3 * a + 1] +
@@ -79,12 +86,17 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
     {
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
+        const real support2 = surface_support2(&p), support = sqrt(support2);
+        real x_a[3];
+        grid_point(position, a, x_a);
         real sum = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3];
             grid_displacement(&g, position, a, b, r_ab);
-            sum += smoothing_w(sqrt(dot3(r_ab, r_ab)), p.h) * mass[b] / density[b];
+            const real r2 = dot3(r_ab, r_ab);
+            if (r2 < support2)
+                sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
         }
         shepard[a] = sum;
     }
@@ -121,11 +133,17 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         const real inv_gamma_a = REAL(1.0) / shepard[a];
         real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        const real support2 = surface_support2(&p), support = sqrt(support2);
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3];
             grid_displacement(&g, position, a, b, r_ab);
-            const real f = smoothing_grad_factor(sqrt(dot3(r_ab, r_ab)), p.h); /* grad_a W_ab = f r_ab */
+            const real r2 = dot3(r_ab, r_ab);
+            if (r2 >= support2)
+                continue;
+            const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
             const real v_b = mass[b] / density[b];
             const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
             for (int d = 0; d < 3; ++d) {
@@ -164,20 +182,26 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
         if (normal_weight[a] > REAL(0.0)) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            real x_a[3];
+            grid_point(position, a, x_a);
             real gamma_star = REAL(0.0), divergence = REAL(0.0);
-            FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+            FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
             {
-                if (normal_weight[b] > REAL(0.0)) {
-                    real r_ab[3];
-                    grid_displacement(&g, position, a, b, r_ab);
-                    const real r = sqrt(dot3(r_ab, r_ab));
-                    const real v_b = normal_weight[b] * mass[b] / density[b];
-                    real n_ba[3];
-                    for (int d = 0; d < 3; ++d)
-                        n_ba[d] = unit_normal[3 * b + d] - unit_normal[3 * a + d];
-                    gamma_star += v_b * smoothing_w(r, p.h);
-                    divergence += v_b * smoothing_grad_factor(r, p.h) * dot3(n_ba, r_ab);
-                }
+                if (normal_weight[b] <= REAL(0.0))
+                    continue;
+                real r_ab[3];
+                grid_displacement(&g, position, a, b, r_ab);
+                const real r2 = dot3(r_ab, r_ab);
+                if (r2 >= support2)
+                    continue;
+                const real r = sqrt(r2);
+                const real v_b = normal_weight[b] * mass[b] / density[b];
+                real n_ba[3];
+                for (int d = 0; d < 3; ++d)
+                    n_ba[d] = unit_normal[3 * b + d] - unit_normal[3 * a + d];
+                gamma_star += v_b * smoothing_w(r, p.h);
+                divergence += v_b * smoothing_grad_factor(r, p.h) * dot3(n_ba, r_ab);
             }
             kappa = fmin(fmax(divergence / gamma_star, -p.max_curvature), p.max_curvature);
         }
@@ -213,11 +237,17 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         const real t_a = p.temperature ? temperature[a] : REAL(0.0);
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
         real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, p.reach)
+        const real support2 = surface_support2(&p), support = sqrt(support2);
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3];
             grid_displacement(&g, position, a, b, r_ab);
-            const real r = sqrt(dot3(r_ab, r_ab));
+            const real r2 = dot3(r_ab, r_ab);
+            if (r2 >= support2)
+                continue;
+            const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];
             if (normal_weight[b] > REAL(0.0)) {
                 const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
