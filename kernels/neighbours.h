@@ -25,17 +25,14 @@ static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
     cc[2] = c / (g->ncell[0] * g->ncell[1]);
 }
 
-/* Index of the k-th of the cells within `reach` of cc (k = 0 ..
- * NEIGHBOUR_CELLS(reach) - 1), wrapped on periodic axes (which must have at
- * least 2 reach + 1 cells); -1 where it falls outside a closed axis. */
-static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k, int reach)
+/* Index of the cell at offset o from cell cc, wrapped on periodic axes; -1
+ * outside a closed axis. */
+static inline int grid_cell_at(const grid_geometry *g, const int cc[3], int ox, int oy, int oz)
 {
-    const int span = 2 * reach + 1;
-    int index = 0;
-    int stride = 1;
+    const int o[3] = {ox, oy, oz};
+    int index = 0, stride = 1;
     for (int d = 0; d < AMSPH_DIM; ++d) {
-        int c = cc[d] + k % span - reach;
-        k /= span;
+        int c = cc[d] + o[d];
         if (c < 0 || c >= g->ncell[d]) {
             if (!g->periodic[d])
                 return -1;
@@ -45,6 +42,19 @@ static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], i
         stride *= g->ncell[d];
     }
     return index;
+}
+
+/* Index of the k-th of the cells within `reach` of cc (k = 0 ..
+ * NEIGHBOUR_CELLS(reach) - 1, x fastest), wrapped on periodic axes (which
+ * must have at least 2 reach + 1 cells); -1 where it falls outside a closed
+ * axis. */
+static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k, int reach)
+{
+    const int span = 2 * reach + 1;
+    int o[3] = {0, 0, 0};
+    for (int d = 0; d < AMSPH_DIM; ++d, k /= span)
+        o[d] = k % span - reach;
+    return grid_cell_at(g, cc, o[0], o[1], o[2]);
 }
 
 /* A displacement r along axis d, replaced by its nearest periodic image on a
@@ -112,25 +122,6 @@ static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], 
             --s.hi[d];
     }
     return s;
-}
-
-/* Index of the cell at offset o from cell cc, wrapped on periodic axes; -1
- * outside a closed axis. */
-static inline int grid_cell_at(const grid_geometry *g, const int cc[3], int ox, int oy, int oz)
-{
-    const int o[3] = {ox, oy, oz};
-    int index = 0, stride = 1;
-    for (int d = 0; d < AMSPH_DIM; ++d) {
-        int c = cc[d] + o[d];
-        if (c < 0 || c >= g->ncell[d]) {
-            if (!g->periodic[d])
-                return -1;
-            c = c < 0 ? c + g->ncell[d] : c - g->ncell[d];
-        }
-        index += c * stride;
-        stride *= g->ncell[d];
-    }
-    return index;
 }
 
 /* Loop b over the particles of the cells within `reach` of cell cc that
