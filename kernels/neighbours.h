@@ -90,6 +90,15 @@ static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *
                  nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                                \
              b < nb_end_; ++b)
 
+/* r_ab = r_a - r_b (nearest image) and r2 = |r_ab|^2; 1 when r2 < radius2. */
+static inline int grid_pair_within(const grid_geometry *g, GLOBAL const real *position, int a, int b, real radius2,
+                                   real r_ab[3], real *r2)
+{
+    grid_displacement(g, position, a, b, r_ab);
+    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
+    return *r2 < radius2;
+}
+
 /* The position of particle a as a private point (for FOR_EACH_NEIGHBOUR_NEAR). */
 static inline void grid_point(GLOBAL const real *position, int a, real x[3])
 {

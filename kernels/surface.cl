@@ -92,10 +92,8 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         real sum = REAL(0.0);
         FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
-            real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
-            const real r2 = dot3(r_ab, r_ab);
-            if (r2 < support2)
+            real r_ab[3], r2;
+            if (grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
                 sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
         }
         shepard[a] = sum;
@@ -138,10 +136,8 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         grid_point(position, a, x_a);
         FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
-            real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
-            const real r2 = dot3(r_ab, r_ab);
-            if (r2 >= support2)
+            real r_ab[3], r2;
+            if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
                 continue;
             const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
             const real v_b = mass[b] / density[b];
@@ -190,10 +186,8 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
             {
                 if (normal_weight[b] <= REAL(0.0))
                     continue;
-                real r_ab[3];
-                grid_displacement(&g, position, a, b, r_ab);
-                const real r2 = dot3(r_ab, r_ab);
-                if (r2 >= support2)
+                real r_ab[3], r2;
+                if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
                 const real v_b = normal_weight[b] * mass[b] / density[b];
@@ -242,10 +236,8 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         grid_point(position, a, x_a);
         FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
         {
-            real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
-            const real r2 = dot3(r_ab, r_ab);
-            if (r2 >= support2)
+            real r_ab[3], r2;
+            if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
                 continue;
             const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];
