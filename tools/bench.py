@@ -39,6 +39,10 @@ FULL_SWEEPS = {
     "conduction": [0.05, 0.025, 0.0125],
     "interface": [0.04, 0.02, 0.01],
     "stefan": [0.04, 0.02, 0.01],
+    "young_laplace": [0.1, 0.05, 0.025],
+    "expansion_cycle": [0.1, 0.05, 0.025],
+    "expansion_column": [0.1, 0.05, 0.025],
+    "sinking": [0.1, 0.05, 0.025],
 }
 QUICK_SWEEPS = {"poiseuille": [1e-4, 7.07e-5, 5e-5], "conduction": [0.0667, 0.05, 0.04]}
 FULL_COUNTS, QUICK_COUNTS = [1e4, 3e4, 1e5, 3e5, 1e6], [1e4, 2e4]
@@ -138,12 +142,13 @@ def tables(thr, conv, header):
                   f"{exponent(group):.2f} |\n")
     if conv:
         out.write("\nSpeed against error (wall time includes scene setup and snapshot output):\n\n"
-                  "| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |\n"
-                  "|---|---|---|---|---|---|---|---|---|\n")
+                  "| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order | other error |\n"
+                  "|---|---|---|---|---|---|---|---|---|---|\n")
         for r in conv:
             order = "" if r["order"] is None else f"{r['order']:.2f}"
             out.write(f"| {r['case']} | {r['backend']} | {r['dx']:g} | {r['particles']} | {r['steps']} | "
-                      f"{r['wall']:.1f} | {r['particles'] * r['steps'] / r['wall']:.3g} | {r['error']:.3e} | {order} |\n")
+                      f"{r['wall']:.1f} | {r['particles'] * r['steps'] / r['wall']:.3g} | {r['error']:.3e} | {order} | "
+                      f"{r['extra'] or ''} |\n")
     return out.getvalue()
 
 
@@ -206,7 +211,7 @@ def main():
               f"{time.monotonic() - start:.0f} s in all")
     write_csv(os.path.join(out, "throughput.csv"), thr, ["physics", "backend_name"] + list(thr[0].keys())[:-2])
     write_csv(os.path.join(out, "convergence.csv"), conv,
-              ["case", "backend", "dx", "particles", "steps", "wall", "error", "order"])
+              ["case", "backend", "dx", "particles", "steps", "wall", "error", "order", "extra"])
     text = tables(thr, conv, header)
     with open(os.path.join(out, "tables.md"), "w") as f:
         f.write(text)

@@ -12,6 +12,12 @@ and dambreak, dambreak_3d (largest drift of the fluid volume sum m/rho);
 conduction, interface (largest temperature error over the output times,
 relative to the 1 K step; Fourier series and the erf solution) and stefan
 (largest relative error of the melting front against Neumann's solution);
+young_laplace (the mean pressure inside r < R/2 at the end against sigma/R);
+expansion_cycle, expansion_column, sinking (Russell's Tests 1, 3 and 4,
+measured by `build/tests/test_isothermal sweep`: Voronoi volumes against
+m / rho0(T) of the interior, and of the band 0.8-0.9 R as the extra column;
+of the lower fluid, and of the upper one as the extra column; the
+particle-scale pressure noise over rho g H with delta-SPH);
 laser_slab (largest relative error of the absorbed power density against
 Beer-Lambert, alpha I0 exp(-2 r^2/r_l^2) exp(-alpha z), within 2 r_l of the
 axis and below the outer bin layers, with bins of dx and the beam moved half
@@ -77,6 +83,13 @@ def hydrostatic_error(outdir, g=9.81, H=1.0, rho0=1000.0):
     below = (s["kind"] == 0) & (s["position"][:, 1] < 0.9 * H)
     exact = rho0 * g * (H - s["position"][below, 1])
     return np.max(np.abs(s["pressure"][below] - exact)) / (rho0 * g * H)
+
+
+def droplet_pressure_error(outdir, expected, radius=1.0):
+    """Young-Laplace: the mean pressure inside r < R/2 at the end against (d - 1) sigma / R."""
+    *_, (t, s) = snapshots(outdir)
+    inside = np.linalg.norm(s["position"], axis=1) < 0.5 * radius
+    return abs(np.mean(s["pressure"][inside]) / expected - 1)
 
 
 def temperature_error(outdir, exact):
@@ -167,8 +180,13 @@ CASES = {
     "interface": ("cases/validation/conduction_interface_1d.yaml", lambda d: temperature_error(d, interface)),
     "stefan": ("cases/validation/stefan_1d.yaml", stefan_error),
     "laser_slab": ("cases/validation/laser_slab_3d.yaml", laser_slab_profile),
+    "young_laplace": ("cases/validation/young_laplace_2d.yaml", lambda d: droplet_pressure_error(d, 10.0)),
 }
 EXTRA = {"laser_slab": ("energy error", laser_slab_energy)}
+# Cases measured by tests/test_isothermal's sweep (Voronoi cells in C):
+# its case name, and the name of its second error (the extra column).
+ISOTHERMAL = {"expansion_cycle": ("cycle", "band 0.8-0.9 R"), "expansion_column": ("column", "upper fluid"),
+              "sinking": ("sinking", None)}
 EDIT = {"laser_slab": laser_slab_text}
 STRIPS = ("interface", "stefan")
 
@@ -194,35 +212,59 @@ def run(amsph, case_text, dx, backend, work, strip, edit):
     return outdir, particles, steps, wall
 
 
-def sweep(case, dxs, amsph="build/amsph", backend="openmp"):
-    """Runs CASE at each spacing, coarsest first, and yields one dict per run:
-    dx, particles, steps, wall (s), error and the observed order against the
-    previous run (None for the first), and the case's EXTRA measure (or None)."""
+def isothermal_run(amsph, case, dx, backend):
+    """One run of tests/test_isothermal's sweep (OpenMP only): particles,
+    steps, wall, the first error and the second (or None), from its row."""
+    if backend != "openmp":
+        raise SystemExit(f"{case}: test_isothermal's sweep runs on the openmp backend only")
+    binary = os.path.join(os.path.dirname(os.path.abspath(amsph)), "tests", "test_isothermal")
+    proc = subprocess.run([binary, "sweep", ISOTHERMAL[case][0], f"{dx:g}"], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise SystemExit(f"dx {dx}: {binary} failed:\n{proc.stderr}")
+    cells = [c.strip() for c in proc.stdout.splitlines()[2].strip("|").split("|")]
+    second = float(cells[8]) if ISOTHERMAL[case][1] else None
+    return int(cells[2]), int(cells[3]), float(cells[4]), float(cells[7]), second
+
+
+def case_runs(case, dxs, amsph, backend):
+    """(dx, particles, steps, wall, error, extra) of each run, coarsest first."""
+    if case in ISOTHERMAL:
+        for dx in sorted(dxs, reverse=True):
+            particles, steps, wall, error, second = isothermal_run(amsph, case, dx, backend)
+            yield dx, particles, steps, wall, error, None if second is None else f"{second:.3e}"
+        return
     case_file, measure = CASES[case]
     with open(case_file) as f:
         text = f.read()
-    previous = None
+    extra = EXTRA.get(case)
     with tempfile.TemporaryDirectory() as work:
         for dx in sorted(dxs, reverse=True):
             outdir, particles, steps, wall = run(amsph, text, dx, backend, work, case in STRIPS, EDIT.get(case))
-            error = measure(outdir)
-            order = None
-            if previous and error > 0 and previous[1] > 0:
-                order = math.log(previous[1] / error) / math.log(previous[0] / dx)
-            extra = EXTRA.get(case)
-            yield {"dx": dx, "particles": particles, "steps": steps, "wall": wall, "error": error, "order": order,
-                   "extra": extra[1](outdir) if extra else None}
-            previous = (dx, error)
+            yield dx, particles, steps, wall, measure(outdir), extra[1](outdir) if extra else None
+
+
+def sweep(case, dxs, amsph="build/amsph", backend="openmp"):
+    """Runs CASE at each spacing, coarsest first, and yields one dict per run:
+    dx, particles, steps, wall (s), error and the observed order against the
+    previous run (None for the first), and the case's extra measure (or None)."""
+    previous = None
+    for dx, particles, steps, wall, error, extra in case_runs(case, dxs, amsph, backend):
+        order = None
+        if previous and error > 0 and previous[1] > 0:
+            order = math.log(previous[1] / error) / math.log(previous[0] / dx)
+        yield {"dx": dx, "particles": particles, "steps": steps, "wall": wall, "error": error, "order": order,
+               "extra": extra}
+        previous = (dx, error)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case", choices=sorted(CASES))
+    ap.add_argument("case", choices=sorted(list(CASES) + list(ISOTHERMAL)))
     ap.add_argument("dx", type=float, nargs="+")
     ap.add_argument("--amsph", default="build/amsph")
     ap.add_argument("--backend", default="openmp", choices=["openmp", "opencl"])
     args = ap.parse_args()
-    extra_name = EXTRA[args.case][0] if args.case in EXTRA else None
+    extra_name = EXTRA[args.case][0] if args.case in EXTRA else ISOTHERMAL.get(args.case, (None, None))[1]
     print(f"| case | backend | dx (m) | particles | steps | wall (s) | particle-steps/s | error | order |"
           + (f" {extra_name} |" if extra_name else ""))
     print(f"|---|---|---|---|---|---|---|---|---|" + ("---|" if extra_name else ""))
