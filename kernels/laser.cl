@@ -118,13 +118,28 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
     }
 }
 
+/* Half-extents, along each grid axis, of the box that holds the PIC
+ * stencil of a node: the cube |offset_k| < 1 of the beam frame (bin units)
+ * projects onto grid axis d as bin_size sum_k |axis[k][d]|, which is
+ * bin_size along the beam's own axes when it is aligned with the grid and
+ * at most bin_size sqrt(d) (the cube's circumscribed ball) when it is not. */
+static inline void laser_stencil_extent(const laser_params *p, real axis[AMSPH_DIM][3], real extent[3])
+{
+    for (int d = 0; d < 3; ++d) {
+        extent[d] = REAL(0.0);
+        for (int k = 0; k < AMSPH_DIM; ++k)
+            extent[d] += fabs(axis[k][d]) * p->bin_size;
+    }
+}
+
 /* Step 1 (Russell 2018 §3.2.2, "sum all particle contributions to a given
  * bin"): node n gathers, over the particles p around it,
  *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
- * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
- * the host keeps within one cell size: the 2^d of the 3^d cells around that
- * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR_NEAR);
- * the others in those cells are passed over by their distance. */
+ * A particle with w_pn > 0 lies in the node's stencil box
+ * (laser_stencil_extent), at most bin_size sqrt(d) from the node, which the
+ * host keeps within one cell size: the cells around the node's that the box
+ * touches hold them all (2 per axis, mostly), and the others in those cells
+ * are passed over by their weight. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, grid_geometry g,
                                  GLOBAL const int *cell_start, laser_params p, int nodes,
@@ -148,17 +163,20 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         }
         int cc[3];
         laser_cell_near(&g, x, cc);
-        const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
+        real extent[3];
+        laser_stencil_extent(&p, axis, extent);
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, 1, sqrt(reach2))
+        FOR_EACH_NEIGHBOUR_IN_SPAN(b, &g, cc, grid_box_span(&g, x, cc, 1, extent), cell_start)
         {
-            real r[3];
+            real r[3], offset[AMSPH_DIM];
             for (int d = 0; d < 3; ++d)
                 r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
-            if (dot3(r, r) < reach2) {
-                real offset[AMSPH_DIM];
-                for (int k = 0; k < AMSPH_DIM; ++k)
-                    offset[k] = dot3(r, axis[k]) / p.bin_size;
+            int in_stencil = 1;
+            for (int k = 0; k < AMSPH_DIM; ++k) {
+                offset[k] = dot3(r, axis[k]) / p.bin_size;
+                in_stencil &= fabs(offset[k]) < REAL(1.0);
+            }
+            if (in_stencil) {
                 const real w = laser_pic_weight(offset);
                 sum_w += w;
                 sum_wv += w * mass[b] / density[b];

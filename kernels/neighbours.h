@@ -107,15 +107,15 @@ static inline void grid_point(GLOBAL const real *position, int a, real x[3])
 }
 
 /* Offsets, along each axis, of the cells within `reach` of cell cc that
- * come within `radius` of the point x: the whole -reach .. reach along a
- * periodic axis (its last cell is wider than cell_size), 0 .. 0 along the
- * axes past the dimension. */
+ * come within extent[d] of the point x along axis d: the whole -reach ..
+ * reach along a periodic axis (its last cell is wider than cell_size), 0 .. 0
+ * along the axes past the dimension. */
 typedef struct {
     int lo[3], hi[3];
 } grid_span;
 
-static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
-                                       real radius)
+static inline grid_span grid_box_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
+                                      const real extent[3])
 {
     grid_span s;
     for (int d = 0; d < 3; ++d) {
@@ -124,28 +124,41 @@ static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], 
         if (d >= AMSPH_DIM || g->periodic[d])
             continue;
         /* cell o spans [o, o + 1) cell sizes from cell cc's lower face */
-        const real offset = (x[d] - g->lo[d]) / g->cell_size - (real)cc[d], extent = radius / g->cell_size;
-        while (s.lo[d] < 0 && (real)(s.lo[d] + 1) <= offset - extent)
+        const real offset = (x[d] - g->lo[d]) / g->cell_size - (real)cc[d], cells = extent[d] / g->cell_size;
+        while (s.lo[d] < 0 && (real)(s.lo[d] + 1) <= offset - cells)
             ++s.lo[d];
-        while (s.hi[d] > 0 && (real)s.hi[d] >= offset + extent)
+        while (s.hi[d] > 0 && (real)s.hi[d] >= offset + cells)
             --s.hi[d];
     }
     return s;
 }
 
-/* Loop b over the particles of the cells within `reach` of cell cc that
- * come within `radius` of the point x (a private real[3]; grid_point):
- * with a support of 1.5 cells (reach 2), about 45 of the 125 cells in 3D.
- *   FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, reach, radius) { ... } */
-#define FOR_EACH_NEIGHBOUR_NEAR(b, g, cc, x, cell_start, reach, radius)                            \
-    for (grid_span nb_s_ = grid_near_span((g), (x), (cc), (reach), (radius));                      \
-         nb_s_.lo[2] <= nb_s_.hi[2]; ++nb_s_.lo[2])                                                \
+/* The span of the cells that come within `radius` of x (a ball). */
+static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
+                                       real radius)
+{
+    const real extent[3] = {radius, radius, radius};
+    return grid_box_span(g, x, cc, reach, extent);
+}
+
+/* Loop b over the particles of the cells of span s around cell cc (a
+ * grid_span, consumed by the loop):
+ *   FOR_EACH_NEIGHBOUR_IN_SPAN(b, &g, cc, s, cell_start) { ... } */
+#define FOR_EACH_NEIGHBOUR_IN_SPAN(b, g, cc, s, cell_start)                                        \
+    for (grid_span nb_s_ = (s); nb_s_.lo[2] <= nb_s_.hi[2]; ++nb_s_.lo[2])                          \
         for (int nb_y_ = nb_s_.lo[1]; nb_y_ <= nb_s_.hi[1]; ++nb_y_)                               \
             for (int nb_x_ = nb_s_.lo[0]; nb_x_ <= nb_s_.hi[0]; ++nb_x_)                           \
                 for (int nb_c_ = grid_cell_at((g), (cc), nb_x_, nb_y_, nb_s_.lo[2]),               \
                          b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                  \
                          nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                        \
                      b < nb_end_; ++b)
+
+/* Loop b over the particles of the cells within `reach` of cell cc that
+ * come within `radius` of the point x (a private real[3]; grid_point):
+ * with a support of 1.5 cells (reach 2), about 45 of the 125 cells in 3D.
+ *   FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, reach, radius) { ... } */
+#define FOR_EACH_NEIGHBOUR_NEAR(b, g, cc, x, cell_start, reach, radius)                            \
+    FOR_EACH_NEIGHBOUR_IN_SPAN(b, g, cc, grid_near_span((g), (x), (cc), (reach), (radius)), cell_start)
 
 /* The 3^d cells of the kernel support. */
 #define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start) FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, 1)
