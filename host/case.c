@@ -301,6 +301,10 @@ static const key_spec specs[] = {
     {.section = SEC_FLUID, .key = "damping_end", .type = VT_NUMBER, .unit = "s",
      .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = FLUID(damping_end),
      .doc = "Time the relaxation damping stops"},
+    {.section = SEC_FLUID, .key = "shifting", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
+     .lo = 0, .hi = 10, .def = 0, .offset = FLUID(shifting),
+     .doc = "Particle shifting coefficient A: fluid particles move by -A h |u| dt grad C after each step "
+            "(Skillen et al. 2013; Lind et al. 2012, tangential only near free surfaces); 2 is usual; 0: off"},
     {.section = SEC_TOP, .key = "thermal", .type = VT_MAP, .sub = SEC_THERMAL,
      .doc = "Heat transfer and phase change module; present: on"},
     {.section = SEC_THERMAL, .key = "integration", .type = VT_CHOICE,

@@ -121,6 +121,7 @@ typedef struct {
     double max_density_error;   /* guard: |rho - rho0| / rho0 above this stops the run, default 0.1 */
     double damping_rate;        /* relaxation: u *= exp(-rate dt) each step, 1/s, default 0 */
     double damping_end;         /* ... while t < damping_end, s, default 0 */
+    double shifting;            /* particle shifting coefficient A (D = A h |u| dt), default 0: off */
 } amsph_fluid_settings;
 
 /* The thermal module (enthalpy, conduction, phase change, radiation); on

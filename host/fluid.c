@@ -46,6 +46,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->clamp_negative_pressure = f->clamp_negative_pressure;
     p->tensile_correction = (amsph_real)f->tensile_correction;
     p->dx = (amsph_real)s->config.dx;
+    p->shifting = (amsph_real)f->shifting;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
     set_reference_density(&s->config, h);
     s->reference_density_varies = reference_density_varies(&s->config);
@@ -117,6 +118,24 @@ int amsph_fluid_forces(amsph_sim *s)
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION));
+}
+
+int amsph_fluid_shift(amsph_sim *s, double dt)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    if (!s->shift)
+        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)s->particles.capacity * 3 * sizeof(amsph_real), &s->shift));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "shifting_displacement", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
+                             field(s, AMSPH_FIELD_KIND), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
+                             amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
+                             amsph_arg_real(dt), amsph_arg_buffer(s->shift)));
+    /* position += 1 * shift */
+    return AMSPH_LAUNCH(b, "drift", n, amsph_arg_buffer(s->shift), amsph_arg_int(n), amsph_arg_real(1.0),
+                        field(s, AMSPH_FIELD_POSITION));
 }
 
 /* Largest speed of sound and kinematic viscosity (with the smallest rho0)

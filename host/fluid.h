@@ -17,6 +17,9 @@ int amsph_fluid_density(amsph_sim *s, double dt);
 /* Equation of state, wall states, then the acceleration of every fluid
  * particle. */
 int amsph_fluid_forces(amsph_sim *s);
+/* Particle shifting at the end of a step of dt (fluid.shifting > 0):
+ * kernels/fluid.cl shifting_displacement, added to the positions. */
+int amsph_fluid_shift(amsph_sim *s, double dt);
 /* Lowers *dt to the acoustic, viscous and force limits (Fuchs et al. 2022
  * Eq. 42), naming the one that binds in *limit. */
 int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit);

@@ -189,6 +189,7 @@ void amsph_sim_free(amsph_sim *s)
     amsph_particles_free(&s->last_good);
     amsph_buffer_free(s->backend, s->work);
     amsph_buffer_free(s->backend, s->closest);
+    amsph_buffer_free(s->backend, s->shift);
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);
@@ -377,6 +378,8 @@ int amsph_sim_step(amsph_sim *s, double dt)
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(p->n),
                                  amsph_arg_real(exp(-s->config.fluid.damping_rate * dt)),
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY])));
+    if (s->config.fluid.shifting > 0.0)
+        AMSPH_CHECK(amsph_fluid_shift(s, dt));
     s->time += dt;
     s->dt = dt;
     ++s->step;

@@ -23,6 +23,7 @@ typedef struct {
     int clamp_negative_pressure;           /* 1: p >= background pressure */
     AMSPH_SHARED_REAL tensile_correction;  /* Monaghan (2000) epsilon; 0: off */
     AMSPH_SHARED_REAL dx;                  /* initial particle spacing, m */
+    AMSPH_SHARED_REAL shifting;            /* particle shifting coefficient A; 0: off */
 } fluid_params;
 
 #endif

@@ -44,7 +44,8 @@ static const char *case_3d =
     "  - {shape: sphere, kind: fluid, material: water, center: [0.25, 0.25, 0.2], radius: 0.1, velocity: [1.5, 0.8, 0.5]}\n"
     "  - {shape: box, kind: wall, material: water, min: [0, 0, 0], max: [0.5, 0.5, 0.075]}\n";
 
-/* The fluid module: a small dam break in 2D, and a 3D column in a tank. */
+/* The fluid module: a small dam break in 2D, and a 3D column in a tank
+ * (with particle shifting). */
 static const char *case_fluid_2d =
     "dimension: 2\n"
     "domain: {min: [-0.05, -0.05], max: [0.65, 0.45]}\n"
@@ -66,7 +67,7 @@ static const char *case_fluid_3d =
     "end_time: 0.03\n"
     "output_interval: 0.03\n"
     "gravity: [0, 0, -9.81]\n"
-    "fluid: {}\n"
+    "fluid: {shifting: 2}\n"
     "materials:\n"
     "  - {name: water, density: 1000, viscosity: 0.001, sound_speed: 20}\n"
     "geometry:\n"

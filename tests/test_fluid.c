@@ -8,6 +8,7 @@
 
 #include "case.h"
 #include "fluid.h"
+#include "grid.h"
 #include "sim.h"
 #include "testing.h"
 
@@ -504,8 +505,153 @@ static void test_pressure_gradient_balances_gravity(void)
     }
 }
 
+
+/* Particle shifting (kernels/fluid.cl shifting_displacement) on a 2D
+ * lattice moving at u = (1, 0) m/s, 20 x 20 particles, periodic in x and,
+ * for the interior case, in y (else the top is a free surface and the
+ * bottom a wall). */
+static const char *shifting_case =
+    "dimension: 2\n"
+    "domain: {min: [0, %s], max: [1, %s], periodic: [true, %s]}\n"
+    "dx: 0.05\n"
+    "end_time: 1\n"
+    "output_interval: 1\n"
+    "fluid: {shifting: %g}\n"
+    "materials:\n"
+    "  - {name: water, density: 1000, sound_speed: 10}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [1, 1], velocity: [1, 0]}\n"
+    "%s";
+static const char *shifting_wall =
+    "  - {shape: box, kind: wall, material: water, min: [0, -0.15], max: [1, 0]}\n";
+
+#define SHIFT_DT 0.01 /* s: D = A h |u| dt = A 6e-4 m^2 */
+
+/* One shifting pass on the scene, after moving the particles by
+ * `move(x, id)`; the displacement of each particle by id (x and y), and the
+ * positions before it. */
+typedef void (*lattice_move)(double x[2], unsigned id, double dx);
+
+static int shift_once(int periodic, double coefficient, lattice_move move, double (*shift)[2],
+                      double (*before)[2], int *n)
+{
+    char text[1024], err[512];
+    snprintf(text, sizeof text, shifting_case, periodic ? "0" : "-0.2", periodic ? "1" : "1.5",
+             periodic ? "true" : "false", coefficient, periodic ? "" : shifting_wall);
+    amsph_case c;
+    if (amsph_case_parse(text, strlen(text), "shifting.yaml", &c, err, sizeof err))
+        return amsph_fail("%s", err);
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    AMSPH_CHECK(amsph_sim_create(&c, b, &s));
+    amsph_host_particles h;
+    AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
+    for (int i = 0; i < h.n; ++i) {
+        amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
+        double p[2] = {x[0], x[1]};
+        if (move && ((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID)
+            move(p, ((unsigned *)h.data[AMSPH_FIELD_ID])[i], c.dx);
+        x[0] = (amsph_real)p[0];
+        x[1] = (amsph_real)p[1];
+    }
+    amsph_particles_free(&s.particles);
+    AMSPH_CHECK(amsph_particles_upload(b, &h, &s.particles));
+    amsph_host_free(&h);
+    AMSPH_CHECK(amsph_grid_sort(&s.grid, &s.particles));
+    AMSPH_CHECK(amsph_fluid_density(&s, 0.0)); /* the Shepard sums at these positions */
+    AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
+    for (int i = 0; i < h.n; ++i) {
+        const unsigned id = ((unsigned *)h.data[AMSPH_FIELD_ID])[i];
+        for (int d = 0; d < 2; ++d)
+            before[id][d] = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d];
+    }
+    amsph_host_free(&h);
+    AMSPH_CHECK(amsph_fluid_shift(&s, SHIFT_DT));
+    AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
+    for (int i = 0; i < h.n; ++i) {
+        const unsigned id = ((unsigned *)h.data[AMSPH_FIELD_ID])[i];
+        for (int d = 0; d < 2; ++d)
+            shift[id][d] = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d] - before[id][d];
+    }
+    *n = h.n;
+    amsph_host_free(&h);
+    stop_sim(b, &s);
+    return 0;
+}
+
+/* The fluid particle of id 210 (row 10, column 10 of the 20 x 20 block)
+ * moved by (0.2, 0.1) dx; that of id 390 (row 19, the top, column 10) by
+ * 0.2 dx along x. */
+static void displace_interior(double x[2], unsigned id, double dx)
+{
+    if (id == 210) {
+        x[0] += 0.2 * dx;
+        x[1] += 0.1 * dx;
+    }
+}
+
+static void displace_top(double x[2], unsigned id, double dx)
+{
+    if (id == 390)
+        x[0] += 0.2 * dx;
+}
+
+static double dot2(const double a[2], const double b[2])
+{
+    return a[0] * b[0] + a[1] * b[1];
+}
+
+/* Shifting evens out the particles and leaves a free surface in place:
+ *   - a particle moved off its lattice site is shifted back towards it,
+ *     and its neighbour on the side it moved to is pushed away from it;
+ *   - on the unperturbed lattice far from it nothing moves (grad C = 0);
+ *   - the displacement is linear in the coefficient A (D = A h |u| dt);
+ *   - at a free surface the displacement has no normal part: the top row
+ *     does not move up, though grad C there points down into the fluid
+ *     (without the projection it would move 0.25 dx here), while the moved
+ *     top particle is still shifted back along the surface, and not out of
+ *     it (its normal, from its own tilted neighbourhood, leans a little);
+ *   - walls do not move. */
+static void test_shifting(void)
+{
+    enum { MAX = 1200 };
+    static double one[MAX][2], two[MAX][2], surface[MAX][2], x[MAX][2];
+    int n = 0;
+    CHECK_OK(shift_once(1, 1.0, displace_interior, one, x, &n));
+    CHECK_OK(shift_once(1, 2.0, displace_interior, two, x, &n));
+    const double dx = 0.05, moved[2] = {0.2 * dx, 0.1 * dx};
+    CHECK(dot2(one[210], moved) < -0.01 * dx * dx, "the moved particle is not shifted back: (%g, %g) m",
+          one[210][0], one[210][1]);
+    CHECK(one[211][0] > 1e-4 * dx, "its right neighbour is not pushed away: %g m", one[211][0]);
+    double far = 0.0, linear = 0.0;
+    for (int id = 0; id < 400; ++id) {
+        const int row = id / 20, column = id % 20;
+        if (abs(row - 10) > 5 || abs(column - 10) > 5)
+            far = fmax(far, sqrt(dot2(one[id], one[id])));
+        for (int d = 0; d < 2; ++d)
+            linear = fmax(linear, fabs(two[id][d] - 2.0 * one[id][d]));
+    }
+    CHECK(far < 1e-6 * dx, "the unperturbed lattice moves by %g m", far);
+    /* to the rounding of the stored positions (float: 6e-8 m at coordinates below 1 m) */
+    CHECK(linear < (AMSPH_DOUBLE ? 1e-12 : 2.5e-7), "the shift is not linear in A (%g m off, of %g m)", linear,
+          sqrt(dot2(one[210], one[210])));
+    CHECK_OK(shift_once(0, 2.0, displace_top, surface, x, &n));
+    double top_normal = 0.0, wall = 0.0;
+    for (int id = 380; id < 400; ++id)
+        if (abs(id - 390) > 5)
+            top_normal = fmax(top_normal, fabs(surface[id][1]));
+    for (int id = 400; id < n; ++id)
+        wall = fmax(wall, sqrt(dot2(surface[id], surface[id])));
+    CHECK(top_normal < 1e-6 * dx, "the free surface moves along its normal by %g m", top_normal);
+    CHECK(surface[390][1] < 1e-6 * dx && surface[390][0] < -0.01 * 0.2 * dx,
+          "the moved surface particle is shifted by (%g, %g) m: not back along the surface, or out of it",
+          surface[390][0], surface[390][1]);
+    CHECK(wall == 0.0, "walls move by %g m", wall);
+}
+
 int main(void)
 {
+    test_shifting();
     test_stacked_hydrostatic();
     test_pressure_gradient_balances_gravity();
     test_tensile_correction();
