@@ -171,13 +171,19 @@ static const preset presets[] = {
           {"melting_range", "100"}}},
     [AMSPH_PRESET_STEEL_FUCHS] =
         {"simplified stainless steel, Fuchs et al. 2022 Tables 1 and 2 (no latent heat; its phase "
-         "switch at T_m becomes a 1 K mushy interval)",
+         "switch at T_m becomes a 1 K mushy interval), with its evaporation constants",
          {{"density", "7430"},
           {"viscosity", "6.0e-3"},
           {"specific_heat", "965"},
           {"conductivity", "35.95"},
           {"melting_temperature", "1700"},
-          {"melting_range", "1"}}},
+          {"melting_range", "1"},
+          {"boiling_temperature", "3000"},
+          {"recoil_pressure_constant", "5.4e4"},
+          {"recoil_temperature_constant", "5e4"},
+          {"evaporation_latent_heat", "6.583e6"},
+          {"vapour_mass_constant", "1.1095e-3"},
+          {"evaporation_enthalpy_reference", "663.731"}}},
 };
 
 #define VARIANT_BIT(v) (1u << (v))
@@ -330,6 +336,20 @@ static const key_spec specs[] = {
     {.section = SEC_THERMAL, .key = "viscous_heating", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = THERMAL(viscous_heating), .rule = "needs `fluid`",
      .doc = "Viscous dissipation tau : grad u heats the fluid (renormalised velocity gradient)"},
+    {.section = SEC_THERMAL, .key = "evaporative_cooling", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = THERMAL(evaporative_cooling), .rule = "needs an evaporating material",
+     .doc = "Free surfaces of fluid and solid lose the vapour's heat m_v (h_v + h(T) - h(T_h,0)) "
+            "(Fuchs et al. 2022 Eq. 18) with the surface delta of the radiation"},
+    {.section = SEC_THERMAL, .key = "recoil_pressure", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = THERMAL(recoil_pressure),
+     .rule = "needs `fluid` and an evaporating material",
+     .doc = "The recoil pressure p_v(T) pushes free surfaces of fluid inward: -p_v n delta per volume "
+            "(Fuchs et al. 2022 Eqs. 10, 30)"},
+    {.section = SEC_THERMAL, .key = "evaporation_temperature", .type = VT_NUMBER, .unit = "K",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = THERMAL(evaporation_temperature),
+     .doc = "Fluid and solid particles hotter than this evaporate: they are removed, counted and their "
+            "enthalpy booked in the energy ledger (the damage parameter Russell 2018 proposes in the "
+            "opening of ch. 3, not implemented there); not set: never"},
     {.section = SEC_TOP, .key = "surface", .type = VT_MAP, .sub = SEC_SURFACE,
      .rule = "needs `fluid`",
      .doc = "Surface tension and Marangoni force on free surfaces (Russell 2018 §3.1.2); present: on"},
@@ -506,6 +526,31 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "surfactant_enthalpy", .type = VT_NUMBER, .unit = "J/mol",
      .def = 0, .offset = MAT(surfactant_enthalpy),
      .doc = "Standard heat of adsorption ΔH0 of the adsorption term"},
+    {.section = SEC_MATERIAL, .key = "recoil_pressure_constant", .type = VT_NUMBER, .unit = "Pa",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(recoil_pressure_constant),
+     .rule = "> 0 needs `boiling_temperature` and `recoil_temperature_constant`",
+     .doc = "C_P of the recoil pressure p_v(T) = C_P exp(-C_T (1/T - 1/T_v)) (Fuchs et al. 2022 Eq. "
+            "10; 0.54 times the ambient pressure); 0: the material does not evaporate"},
+    {.section = SEC_MATERIAL, .key = "recoil_temperature_constant", .type = VT_NUMBER, .unit = "K",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(recoil_temperature_constant),
+     .doc = "C_T of p_v(T): the molar latent heat of evaporation over R"},
+    {.section = SEC_MATERIAL, .key = "boiling_temperature", .type = VT_NUMBER, .unit = "K",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(boiling_temperature),
+     .doc = "Boiling temperature T_v of p_v(T)"},
+    {.section = SEC_MATERIAL, .key = "evaporation_latent_heat", .type = VT_NUMBER, .unit = "J/kg",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(evaporation_latent_heat),
+     .doc = "Latent heat of evaporation h_v (Fuchs et al. 2022 Eq. 18)"},
+    {.section = SEC_MATERIAL, .key = "vapour_mass_constant", .type = VT_NUMBER, .unit = "K·s²/m²",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(vapour_mass_constant),
+     .rule = "> 0 for `thermal.evaporative_cooling`",
+     .doc = "C_M = M / (2π R) of the vapour mass flux m_v = 0.82 c_s p_v(T) sqrt(C_M / T) (Fuchs et "
+            "al. 2022 Eq. 18)"},
+    {.section = SEC_MATERIAL, .key = "sticking_coefficient", .type = VT_NUMBER,
+     .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 1, .offset = MAT(sticking_coefficient),
+     .doc = "Sticking coefficient c_s of the vapour mass flux (close to 1 for metals)"},
+    {.section = SEC_MATERIAL, .key = "evaporation_enthalpy_reference", .type = VT_NUMBER, .unit = "K",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(evaporation_enthalpy_reference),
+     .doc = "Reference temperature T_h,0 of the vapour's specific enthalpy h(T) - h(T_h,0) in Eq. 18"},
     {.section = SEC_TOP, .key = "geometry", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
      .doc = "Bodies filled with particles"},
@@ -1362,6 +1407,40 @@ static int finish_material(parser *p, const scope *sc)
     return finish_material_thermal(p, sc);
 }
 
+/* The recoil force moves fluid; evaporation needs a material that
+ * evaporates, and each such material the constants of p_v(T) (and of the
+ * vapour mass flux for the heat loss). */
+static int check_evaporation(parser *p)
+{
+    const amsph_case *c = p->c;
+    const amsph_thermal_settings *t = &c->thermal;
+    if (t->recoil_pressure && !c->fluid.enabled)
+        return fail(p, p->thermal_line, "'thermal.recoil_pressure' needs the fluid module (a 'fluid:' section)");
+    if (!t->recoil_pressure && !t->evaporative_cooling)
+        return 0;
+    int evaporating = 0;
+    for (int i = 0; i < c->n_materials; i++) {
+        const amsph_material *m = &c->materials[i];
+        if (!(m->recoil_pressure_constant > 0))
+            continue;
+        ++evaporating;
+        const char *missing = !(m->boiling_temperature > 0)            ? "boiling_temperature"
+                              : !(m->recoil_temperature_constant > 0) ? "recoil_temperature_constant"
+                              : t->evaporative_cooling && !(m->vapour_mass_constant > 0) ? "vapour_mass_constant"
+                                                                                          : NULL;
+        if (missing)
+            return fail(p, p->material_line[i], "material '%s' evaporates (recoil_pressure_constant > 0) and "
+                        "needs '%s' > 0",
+                        m->name, missing);
+    }
+    if (!evaporating)
+        return fail(p, p->thermal_line,
+                    "'thermal.%s' needs a material that evaporates: give one a "
+                    "'recoil_pressure_constant' > 0 (or the preset steel_fuchs)",
+                    t->recoil_pressure ? "recoil_pressure" : "evaporative_cooling");
+    return 0;
+}
+
 /* The thermal module needs heat capacities, conductivities and initial
  * temperatures. */
 static int finish_thermal(parser *p)
@@ -1380,7 +1459,7 @@ static int finish_thermal(parser *p)
                         "geometry[%d] needs 'temperature' for the thermal module", k);
     if (c->thermal.viscous_heating && !c->fluid.enabled)
         return fail(p, p->thermal_line, "'thermal.viscous_heating' needs the fluid module (a 'fluid:' section)");
-    return 0;
+    return check_evaporation(p);
 }
 
 /* Every particle has a temperature: every block gives one, or the history

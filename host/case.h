@@ -77,6 +77,15 @@ typedef struct {
     double surfactant_segregation;                /* k_l */
     double surfactant_activity;                   /* a_s */
     double surfactant_enthalpy;                   /* dH0, J/mol */
+    /* evaporation (Fuchs et al. 2022 Eqs. 10, 18; kernels/vapour.h); a material
+     * with recoil_pressure_constant 0 (the default) does not evaporate */
+    double boiling_temperature;            /* T_v, K */
+    double recoil_pressure_constant;       /* C_P of p_v(T) = C_P exp(-C_T (1/T - 1/T_v)), Pa */
+    double recoil_temperature_constant;    /* C_T = molar latent heat / R, K */
+    double evaporation_latent_heat;        /* h_v, J/kg */
+    double vapour_mass_constant;           /* C_M = M / (2 pi R), K s^2/m^2 */
+    double sticking_coefficient;           /* c_s, default 1 */
+    double evaporation_enthalpy_reference; /* T_h,0 of h(T) in Eq. 18, K, default 0 */
 } amsph_material;
 
 /* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at
@@ -137,6 +146,9 @@ typedef struct {
     int radiation;              /* 1: free surfaces radiate (Russell Eq. 3.39), default 0 */
     double ambient_temperature; /* T_inf of the radiation, K, default 300 */
     int viscous_heating;        /* 1: tau : grad u heats the fluid (kernels/thermal.cl), default 0 */
+    int evaporative_cooling;    /* 1: free surfaces lose the heat of Fuchs Eq. 18, default 0 */
+    int recoil_pressure;        /* 1: the recoil force of Fuchs Eqs. 10, 30 on fluid, default 0 */
+    double evaporation_temperature; /* particles above it are removed, K; 0: never (default) */
 } amsph_thermal_settings;
 /* The surface module (surface tension and Marangoni force on free
  * surfaces, kernels/surface.cl); on when the case has a `surface:` section. */

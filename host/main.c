@@ -7,7 +7,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include "analyze.h"
 #include "backend.h"
 #include "bench.h"
 #include "case.h"
@@ -19,6 +22,7 @@
 
 #define EXIT_BAD_INPUT AMSPH_BAD_INPUT
 #define DEFAULT_CHECKPOINT_INTERVAL 1800.0 /* wall seconds */
+#define AMSPH_MAX_PLOTTED 16                /* metrics `analyze --plot` draws, at most */
 
 static const char usage[] =
     "usage: amsph <command> [options]\n"
@@ -32,6 +36,10 @@ static const char usage[] =
     "  devices             list the OpenCL devices and the OpenMP backend\n"
     "  keys                print the case-file key reference (Markdown)\n"
     "  columns             print the series.csv column reference (Markdown)\n"
+    "  analyze OUTDIR [--csv FILE] [--plot FILE.png] [--scan x|y|z] [--up x|y|z] [--track-at M]\n"
+    "                      melt-pool metrics of every snapshot (default OUTDIR/melt_pool.csv),\n"
+    "                      plotted over time with --plot; scan axis default x, up the last axis\n"
+    "  analyze --metrics   print the metric reference (Markdown)\n"
     "  bench grid [--particles N]... [--repeat R] [--backend B] [--device N]\n"
     "                      time the sorted-grid build (3D, random particles)\n"
     "  bench throughput CASE.yaml [--particles N]... [--steps S] [--warmup W] [--quick]\n"
@@ -61,6 +69,9 @@ typedef struct {
     int warmup; /* -1: the default */
     int quick;
     const char *csv;
+    const char *plot;            /* analyze: PNG of the metrics over time */
+    amsph_analysis_axes axes;    /* analyze */
+    int metrics;                 /* analyze --metrics */
 } cli_options;
 
 static int bad_usage(const char *message, const char *value)
@@ -101,8 +112,14 @@ static int parse_seconds_option(const char *text, double *out)
     return 0;
 }
 
+/* An axis name x, y or z; -1 otherwise. */
+static int parse_axis(const char *text)
+{
+    return !strcmp(text, "x") ? 0 : !strcmp(text, "y") ? 1 : !strcmp(text, "z") ? 2 : -1;
+}
+
 /* Parses the options after the command word; positional arguments go to
- * case_path. Returns 0 or an exit status. */
+ * case_path (analyze: the output directory). Returns 0 or an exit status. */
 static int parse_options(int argc, char **argv, cli_options *o)
 {
     for (int i = 0; i < argc; ++i) {
@@ -140,6 +157,25 @@ static int parse_options(int argc, char **argv, cli_options *o)
             if (!has_value)
                 return bad_usage("--csv needs a file", NULL);
             o->csv = argv[++i];
+        } else if (!strcmp(a, "--plot")) {
+            if (!has_value)
+                return bad_usage("--plot needs a PNG file", NULL);
+            o->plot = argv[++i];
+        } else if (!strcmp(a, "--scan") || !strcmp(a, "--up")) {
+            const int axis = has_value ? parse_axis(argv[i + 1]) : -1;
+            if (axis < 0)
+                return bad_usage(!strcmp(a, "--scan") ? "--scan takes x, y or z" : "--up takes x, y or z",
+                                 has_value ? argv[i + 1] : NULL);
+            *(!strcmp(a, "--scan") ? &o->axes.scan : &o->axes.up) = axis;
+            ++i;
+        } else if (!strcmp(a, "--track-at")) {
+            char *end = NULL;
+            o->axes.track_at = has_value ? strtod(argv[i + 1], &end) : NAN;
+            if (!has_value || !end || *end || end == argv[i + 1] || !isfinite(o->axes.track_at))
+                return bad_usage("--track-at takes a coordinate in m", has_value ? argv[i + 1] : NULL);
+            ++i;
+        } else if (!strcmp(a, "--metrics")) {
+            o->metrics = 1;
         } else if (!strcmp(a, "--quick")) {
             o->quick = 1;
         } else if (!strcmp(a, "--repeat")) {
@@ -365,6 +401,62 @@ static int command_bench(const cli_options *o, const char *what)
     return status == AMSPH_BAD_INPUT ? EXIT_BAD_INPUT : status ? 1 : 0;
 }
 
+/* Runs argv (argv[0] looked up on PATH) and waits; its exit status, or 1. */
+static int run_program(char *const argv[])
+{
+    fflush(NULL);
+    const pid_t child = fork();
+    if (child == 0) {
+        execvp(argv[0], argv);
+        fprintf(stderr, "amsph: cannot run %s: %s\n", argv[0], strerror(errno));
+        _exit(127);
+    }
+    int status = 0;
+    if (child < 0 || waitpid(child, &status, 0) < 0)
+        return 1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+/* Plots the analysis CSV with tools/plot_series.py: the Python of
+ * AMSPH_PYTHON (environment, else the one CMake found), the tools of
+ * AMSPH_SOURCE_DIR (environment, else the source tree of the build). */
+static int plot_analysis(const char *self, const char *csv, const char *png)
+{
+    const char *python = getenv("AMSPH_PYTHON") ? getenv("AMSPH_PYTHON") : AMSPH_PYTHON;
+    const char *source = getenv("AMSPH_SOURCE_DIR") ? getenv("AMSPH_SOURCE_DIR") : AMSPH_SOURCE_DIR;
+    char script[1100];
+    snprintf(script, sizeof script, "%s/tools/plot_series.py", source);
+    char *argv[8 + AMSPH_MAX_PLOTTED] = {(char *)python, script, (char *)csv, "-o", (char *)png,
+                                         "--amsph", (char *)self, "--units-from", "metrics", "--columns"};
+    int argc = 10;
+    for (int k = 1; k < amsph_analysis_metric_count && argc < 8 + AMSPH_MAX_PLOTTED - 1; ++k)
+        argv[argc++] = (char *)amsph_analysis_metrics[k].name;
+    argv[argc] = NULL;
+    const int status = run_program(argv);
+    if (status)
+        fprintf(stderr, "amsph: plotting %s with %s %s failed (status %d); the CSV is written\n", png, python, script,
+                status);
+    return status ? 1 : 0;
+}
+
+static int command_analyze(const cli_options *o, const char *self)
+{
+    if (o->metrics) {
+        amsph_analysis_print_metrics(stdout);
+        return 0;
+    }
+    if (!o->case_path)
+        return bad_usage("analyze needs an output directory", NULL);
+    char csv[1100];
+    if (!o->csv && snprintf(csv, sizeof csv, "%s/melt_pool.csv", o->case_path) >= (int)sizeof csv)
+        return bad_usage("output directory path too long", o->case_path);
+    const char *path = o->csv ? o->csv : csv;
+    const int status = amsph_analyze(o->case_path, &o->axes, path);
+    if (status)
+        return failed(status);
+    return o->plot ? plot_analysis(self, path, o->plot) : 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
@@ -372,7 +464,10 @@ int main(int argc, char **argv)
         return argc < 2 ? EXIT_BAD_INPUT : 0;
     }
     const char *command = argv[1];
-    cli_options o = {.device = -1, .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL, .warmup = -1};
+    cli_options o = {.device = -1,
+                     .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL,
+                     .warmup = -1,
+                     .axes = {.scan = 0, .up = -1, .track_at = NAN}};
     const int options_from = !strcmp(command, "bench") && argc > 2 ? 3 : 2; /* after `bench WHAT` */
     int status = parse_options(argc - options_from, argv + options_from, &o);
     if (status)
@@ -395,5 +490,7 @@ int main(int argc, char **argv)
     }
     if (!strcmp(command, "bench"))
         return command_bench(&o, argc > 2 ? argv[2] : NULL);
+    if (!strcmp(command, "analyze"))
+        return command_analyze(&o, argv[0]);
     return bad_usage("unknown command", command);
 }

@@ -113,6 +113,12 @@ static double thermal_value(const amsph_series_sample *x, double value)
 static double enthalpy(const amsph_series_sample *x) { return thermal_value(x, x->enthalpy); }
 static double laser_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.laser); }
 static double radiated_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.radiation); }
+static double evaporation_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.evaporation); }
+static double evaporated_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.evaporated); }
+static double evaporated_particles(const amsph_series_sample *x)
+{
+    return thermal_value(x, (double)x->sim->evaporated_particles);
+}
 static double wall_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.walls); }
 static double viscous_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.viscous); }
 static double thermal_iterations(const amsph_series_sample *x)
@@ -145,16 +151,24 @@ const amsph_series_column amsph_series_columns[] = {
     {"kinetic_energy", "J", "Total kinetic energy, sum of m u^2 / 2", kinetic_energy},
     {"enthalpy", "J",
      "Sum of m h over fluid and solid particles (sensible heat from 0 K plus latent heat); this and "
-     "the next six are empty without the thermal module",
+     "the next nine are empty without the thermal module",
      enthalpy},
     {"laser_energy", "J", "Laser energy absorbed by the material since the start", laser_energy},
     {"radiated_energy", "J", "Energy radiated from free surfaces since the start", radiated_energy},
+    {"evaporation_heat", "J",
+     "Heat carried off by the vapour of free surfaces since the start (thermal.evaporative_cooling, Fuchs "
+     "Eq. 18)",
+     evaporation_heat},
+    {"evaporated_particles", "1", "Particles removed above thermal.evaporation_temperature since the start",
+     evaporated_particles},
+    {"evaporated_energy", "J", "Enthalpy m h of the particles removed above thermal.evaporation_temperature",
+     evaporated_energy},
     {"wall_heat", "J", "Heat given to the material by the Dirichlet walls since the start (negative: taken)",
      wall_heat},
     {"viscous_heat", "J", "Viscous dissipation turned into heat since the start", viscous_heat},
     {"ledger_error", "1",
-     "Energy ledger: abs(enthalpy change - (laser - radiated + wall + viscous)) over the larger of the "
-     "change and the sum of the four terms' magnitudes",
+     "Energy ledger: abs(enthalpy change - (laser - radiated - evaporation_heat - evaporated_energy + wall + "
+     "viscous)) over the larger of the change and the sum of the six terms' magnitudes",
      ledger_error},
     {"thermal_iterations", "1",
      "Fixed-point iterations of the last enthalpy update (1 explicit; 0 before the first step)",

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "evaporation.h"
 #include "fluid.h"
 #include "guards.h"
 #include "laser.h"
@@ -36,6 +37,18 @@ static void surface_tension_row(const amsph_material *m, amsph_real *row)
     row[MATERIAL_SURFACTANT_ENTHALPY] = (amsph_real)m->surfactant_enthalpy;
 }
 
+/* The constants of evaporation (kernels/vapour.h) of one material;
+ * h(T_h,0) needs the thermal tables (the recoil force alone does not). */
+static void evaporation_row(const amsph_material *m, amsph_real *row)
+{
+    const double reference = m->specific_heat.n ? amsph_thermal_enthalpy(m, m->evaporation_enthalpy_reference) : 0.0;
+    row[MATERIAL_RECOIL_PRESSURE] = (amsph_real)m->recoil_pressure_constant;
+    row[MATERIAL_RECOIL_TEMPERATURE] = (amsph_real)m->recoil_temperature_constant;
+    row[MATERIAL_BOILING_TEMPERATURE] = (amsph_real)m->boiling_temperature;
+    row[MATERIAL_VAPOUR_HEAT] = (amsph_real)(m->evaporation_latent_heat - reference);
+    row[MATERIAL_VAPOUR_FLUX] = (amsph_real)(0.82 * m->sticking_coefficient * sqrt(m->vapour_mass_constant));
+}
+
 static int upload_materials(amsph_sim *s)
 {
     const amsph_case *c = &s->config;
@@ -47,6 +60,7 @@ static int upload_materials(amsph_sim *s)
         row[MATERIAL_VISCOSITY] = (amsph_real)mat->viscosity;
         row[MATERIAL_MUSHY_VISCOSITY] = (amsph_real)mat->mushy_viscosity;
         surface_tension_row(mat, row);
+        evaporation_row(mat, row);
         row[MATERIAL_DENSITY_POINTS] = (amsph_real)mat->density.n;
         for (int i = 0; i < mat->density.n; ++i) {
             row[MATERIAL_DENSITY_TEMPERATURE + i] = (amsph_real)mat->density.T[i];
@@ -73,6 +87,10 @@ static int compute_rates(amsph_sim *s, double dt)
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_FORCES, NULL));
     if (s->config.fluid.enabled) {
         AMSPH_CHECK(amsph_fluid_forces(s));
+        if (s->config.thermal.enabled && s->config.thermal.recoil_pressure) {
+            AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
+            AMSPH_CHECK(amsph_evaporation_recoil(s));
+        }
         if (!s->config.surface.enabled)
             return 0;
         AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));

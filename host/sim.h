@@ -23,14 +23,24 @@
 #include "thermal_params.h"
 
 /* Terms of the energy ledger, as the thermal module books them. */
-enum { AMSPH_LEDGER_LASER, AMSPH_LEDGER_RADIATION, AMSPH_LEDGER_WALLS, AMSPH_LEDGER_VISCOUS, AMSPH_LEDGER_TERMS };
+enum {
+    AMSPH_LEDGER_LASER,
+    AMSPH_LEDGER_RADIATION,
+    AMSPH_LEDGER_EVAPORATION,
+    AMSPH_LEDGER_WALLS,
+    AMSPH_LEDGER_VISCOUS,
+    AMSPH_LEDGER_TERMS
+};
 
 /* Time integrals of the heat exchanged by the material (fluid and solid),
- * J (J/m in 2D): enthalpy now - initial = laser - radiation + walls + viscous. */
+ * J (J/m in 2D): enthalpy now - initial
+ *   = laser - radiation - evaporation - evaporated + walls + viscous. */
 typedef struct {
-    double initial;   /* sum of m h at the start */
-    double laser;     /* absorbed laser energy */
-    double radiation; /* radiated from free surfaces */
+    double initial;     /* sum of m h at the start */
+    double laser;       /* absorbed laser energy */
+    double radiation;   /* radiated from free surfaces */
+    double evaporation; /* carried off by the vapour of free surfaces (Fuchs Eq. 18) */
+    double evaporated;  /* m h of the particles removed above thermal.evaporation_temperature */
     double walls;     /* given by the Dirichlet walls (negative: taken) */
     double viscous;   /* viscous dissipation turned into heat */
 } amsph_energy_ledger;
@@ -40,6 +50,7 @@ typedef struct {
     amsph_buffer *enthalpy_start, *rate_start, *temperature_previous;
     amsph_buffer *wall_temperature; /* mirrored temperature of walls (kernels/thermal.cl) */
     amsph_buffer *power[AMSPH_LEDGER_TERMS];
+    amsph_buffer *evaporated; /* 1 for a particle that evaporates now, else 0 (evaporate_hot) */
 } amsph_thermal_work;
 #include "laser_params.h"
 
@@ -69,6 +80,7 @@ typedef struct {
     amsph_thermal_work thermal_work;
     amsph_energy_ledger ledger;
     int thermal_iterations; /* of the last step (midpoint: fixed-point iterations) */
+    long long evaporated_particles; /* removed above thermal.evaporation_temperature, since the start */
     double thermal_dt;      /* the diffusion limit, s (fixed for the run) */
     amsph_laser_state laser;
     surface_params surface;
@@ -105,6 +117,9 @@ typedef struct {
     X(ledger.initial)                                                                              \
     X(ledger.laser)                                                                                \
     X(ledger.radiation)                                                                            \
+    X(ledger.evaporation)                                                                          \
+    X(ledger.evaporated)                                                                           \
+    X(evaporated_particles)                                                                        \
     X(ledger.walls)                                                                                \
     X(ledger.viscous)
 

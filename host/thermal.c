@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "evaporation.h"
 #include "laser.h"
 #include "material.h"
 #include "thermal_table.h"
@@ -105,6 +106,16 @@ int amsph_thermal_nodes(const amsph_material *m, double *temperature, double *en
     return count;
 }
 
+double amsph_thermal_enthalpy(const amsph_material *m, double t)
+{
+    double nodes[THERMAL_NODES], h[THERMAL_NODES], k[THERMAL_NODES];
+    const int count = amsph_thermal_nodes(m, nodes, h, k);
+    int i = 0; /* the segment that holds t, the last one beyond it (as table_interpolate) */
+    while (i < count - 2 && t >= nodes[i + 1])
+        ++i;
+    return h[i] + (t - nodes[i]) * (h[i + 1] - h[i]) / (nodes[i + 1] - nodes[i]);
+}
+
 int amsph_surface_delta(amsph_sim *s, double cutoff, amsph_real *delta)
 {
     amsph_buffer *out = NULL;
@@ -134,7 +145,10 @@ int amsph_thermal_setup(amsph_sim *s, amsph_host_particles *h)
     p->ambient_temperature = (amsph_real)t->ambient_temperature;
     p->surface_cutoff = (amsph_real)0.1; /* PHYSICS.md erratum 5: |n| h against ~0.1 */
     p->radiation = t->radiation;
-    if (p->radiation)
+    p->evaporative_cooling = t->evaporative_cooling;
+    p->recoil_pressure = t->recoil_pressure;
+    p->evaporation_temperature = (amsph_real)t->evaporation_temperature;
+    if (p->radiation || p->evaporative_cooling || p->recoil_pressure)
         AMSPH_CHECK(amsph_surface_delta(s, p->surface_cutoff, &p->surface_delta));
     p->viscous_heating = t->viscous_heating;
     p->phase_change_kinds = s->config.fluid.enabled;
@@ -236,6 +250,8 @@ int amsph_thermal_allocate(amsph_sim *s)
     AMSPH_CHECK(alloc_work(s, &w->wall_temperature));
     for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k)
         AMSPH_CHECK(alloc_work(s, &w->power[k]));
+    if (s->thermal.evaporation_temperature > 0)
+        AMSPH_CHECK(alloc_work(s, &w->evaporated));
     return 0;
 }
 
@@ -264,6 +280,7 @@ void amsph_thermal_free(amsph_sim *s)
     amsph_buffer_free(s->backend, w->wall_temperature);
     for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k)
         amsph_buffer_free(s->backend, w->power[k]);
+    amsph_buffer_free(s->backend, w->evaporated);
 }
 
 /* Enthalpy rates into `rate` and the ledger powers (W) into power[]. */
@@ -289,10 +306,12 @@ static int heat_rate(amsph_sim *s, amsph_buffer *rate, double power[AMSPH_LEDGER
         amsph_arg_buffer(s->grid.cell), amsph_arg_int(p->n), grid, amsph_arg_buffer(s->grid.cell_start),
         amsph_arg_buffer(s->materials), amsph_arg_buffer(s->thermal_table), params, amsph_arg_buffer(rate),
         amsph_arg_buffer(w->power[AMSPH_LEDGER_LASER]), amsph_arg_buffer(w->power[AMSPH_LEDGER_RADIATION]),
-        amsph_arg_buffer(w->power[AMSPH_LEDGER_WALLS]), amsph_arg_buffer(w->power[AMSPH_LEDGER_VISCOUS])));
+        amsph_arg_buffer(w->power[AMSPH_LEDGER_EVAPORATION]), amsph_arg_buffer(w->power[AMSPH_LEDGER_WALLS]),
+        amsph_arg_buffer(w->power[AMSPH_LEDGER_VISCOUS])));
     const int present[AMSPH_LEDGER_TERMS] = {
         [AMSPH_LEDGER_LASER] = s->config.laser.enabled, [AMSPH_LEDGER_RADIATION] = s->thermal.radiation,
-        [AMSPH_LEDGER_WALLS] = 1, [AMSPH_LEDGER_VISCOUS] = s->thermal.viscous_heating};
+        [AMSPH_LEDGER_EVAPORATION] = s->thermal.evaporative_cooling, [AMSPH_LEDGER_WALLS] = 1,
+        [AMSPH_LEDGER_VISCOUS] = s->thermal.viscous_heating};
     for (int k = 0; k < AMSPH_LEDGER_TERMS; ++k) {
         power[k] = 0.0;
         if (present[k])
@@ -323,6 +342,7 @@ static void book(amsph_sim *s, const double *power_a, const double *power_b, dou
 {
     s->ledger.laser += 0.5 * dt * (power_a[AMSPH_LEDGER_LASER] + power_b[AMSPH_LEDGER_LASER]);
     s->ledger.radiation += 0.5 * dt * (power_a[AMSPH_LEDGER_RADIATION] + power_b[AMSPH_LEDGER_RADIATION]);
+    s->ledger.evaporation += 0.5 * dt * (power_a[AMSPH_LEDGER_EVAPORATION] + power_b[AMSPH_LEDGER_EVAPORATION]);
     s->ledger.walls += 0.5 * dt * (power_a[AMSPH_LEDGER_WALLS] + power_b[AMSPH_LEDGER_WALLS]);
     s->ledger.viscous += 0.5 * dt * (power_a[AMSPH_LEDGER_VISCOUS] + power_b[AMSPH_LEDGER_VISCOUS]);
 }
@@ -385,7 +405,8 @@ int amsph_thermal_advance(amsph_sim *s, double dt)
         AMSPH_CHECK(advance_midpoint(s, dt));
     else
         AMSPH_CHECK(advance_explicit(s, dt));
-    return finish_step(s);
+    AMSPH_CHECK(finish_step(s));
+    return s->thermal.evaporation_temperature > 0 ? amsph_evaporation_remove_hot(s) : 0;
 }
 
 void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit)
@@ -408,8 +429,9 @@ int amsph_thermal_energy(amsph_sim *s, double *energy)
 double amsph_energy_ledger_error(const amsph_energy_ledger *l, double energy)
 {
     const double change = energy - l->initial;
-    const double booked = l->laser - l->radiation + l->walls + l->viscous;
-    const double gross = fabs(l->laser) + fabs(l->radiation) + fabs(l->walls) + fabs(l->viscous);
+    const double booked = l->laser - l->radiation - l->evaporation - l->evaporated + l->walls + l->viscous;
+    const double gross = fabs(l->laser) + fabs(l->radiation) + fabs(l->evaporation) + fabs(l->evaporated) +
+                         fabs(l->walls) + fabs(l->viscous);
     const double scale = fmax(gross, fabs(change));
     return scale > 0.0 ? fabs(change - booked) / scale : 0.0;
 }

@@ -42,6 +42,9 @@ int amsph_thermal_ledger_error(amsph_sim *s, double *error);
  * time t (cases without the thermal module). */
 int amsph_thermal_prescribe(amsph_sim *s, double t);
 
+/* h(T) of a material's node table, J/kg (as the kernels interpolate it). */
+double amsph_thermal_enthalpy(const amsph_material *m, double t);
+
 /* Node table of one material (exposed for tests): temperatures, enthalpies
  * and conductivities of THERMAL_NODES nodes at most; returns the count. */
 int amsph_thermal_nodes(const amsph_material *m, double *temperature, double *enthalpy,

@@ -17,11 +17,17 @@
 #define MATERIAL_SURFACTANT_EXCESS 7     /* Gamma_s, mol/m^2; 0: no surfactant term */
 #define MATERIAL_SURFACTANT_LOG_K 8      /* ln(k_l a_s) */
 #define MATERIAL_SURFACTANT_ENTHALPY 9   /* dH0, J/mol */
+/* evaporation (Fuchs et al. 2022 Eqs. 10, 18), kernels/vapour.h */
+#define MATERIAL_RECOIL_PRESSURE 10    /* C_P, Pa; 0: the material does not evaporate */
+#define MATERIAL_RECOIL_TEMPERATURE 11 /* C_T, K */
+#define MATERIAL_BOILING_TEMPERATURE 12 /* T_v, K */
+#define MATERIAL_VAPOUR_HEAT 13        /* h_v - h(T_h,0) with h from 0 K (thermal_table.h), J/kg */
+#define MATERIAL_VAPOUR_FLUX 14        /* 0.82 c_s sqrt(C_M), sqrt(K) s/m */
 /* Reference density rho0(T): n points (T_i, rho0_i), T increasing, linear
  * between them and constant beyond the ends; n = 1: the constant rho0_0. */
 #define MATERIAL_TABLE_POINTS 16        /* AMSPH_MAX_TABLE of host/case.h */
-#define MATERIAL_DENSITY_POINTS 10      /* n, at most MATERIAL_TABLE_POINTS */
-#define MATERIAL_DENSITY_TEMPERATURE 11 /* T_i, K */
+#define MATERIAL_DENSITY_POINTS 15      /* n, at most MATERIAL_TABLE_POINTS */
+#define MATERIAL_DENSITY_TEMPERATURE 16 /* T_i, K */
 #define MATERIAL_DENSITY_VALUE (MATERIAL_DENSITY_TEMPERATURE + MATERIAL_TABLE_POINTS) /* rho0_i, kg/m^3 */
 #define MATERIAL_STRIDE (MATERIAL_DENSITY_VALUE + MATERIAL_TABLE_POINTS)
 

@@ -15,6 +15,7 @@
 #include "smoothing.h"
 #include "thermal_params.h"
 #include "thermal_table.h"
+#include "vapour.h"
 
 #define STEFAN_BOLTZMANN REAL(5.670374419e-8) /* W/(m^2 K^4) */
 
@@ -158,14 +159,12 @@ static inline real viscous_dissipation(const real g_raw[3][3], const real m[3][3
  * Shepard sum Gamma = sum_b V_b W_ab falls from 1 to about 1/2 across the
  * outermost particles (there is nothing outside to sum), so c = 2 would
  * make it integrate to the surface area; c = p->surface_delta makes it do so
- * exactly on a flat lattice face, the cut-off included (flat_face_delta).
- * Below the cut-off |grad Gamma| h the particle is interior. */
-static inline real radiation_loss(real temp, real emissivity, real grad_gamma, const thermal_params *p)
+ * exactly on a flat lattice face, the cut-off included (flat_face_delta;
+ * surface_delta in thermal_params.h). */
+static inline real radiation_loss(real temp, real emissivity, real delta, const thermal_params *p)
 {
-    if (grad_gamma * p->h < p->surface_cutoff)
-        return REAL(0.0);
     const real t2 = temp * temp, ambient2 = p->ambient_temperature * p->ambient_temperature;
-    return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * p->surface_delta * grad_gamma;
+    return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * delta;
 }
 
 /* The integral across a flat face of a square (cubic) lattice of spacing dx
@@ -209,6 +208,8 @@ KERNEL void flat_face_delta(real h, real dx, real cutoff, GLOBAL real *integral)
  * powers the energy ledger integrates, per particle, in W:
  *   power_laser     m_a s_laser / rho_a          absorbed by fluid and solid
  *   power_radiation m_a s_rad / rho_a            lost by fluid and solid
+ *   power_evaporation m_a q_v delta / rho_a      lost by fluid and solid (Fuchs
+ *                                                Eq. 18, kernels/vapour.h)
  *   power_wall      -m_w dh_w/dt of a wall       given by the wall (Dirichlet)
  *   power_viscous   m_a Phi / rho_a              heating of the fluid
  * Conduction uses the walls' mirrored temperature (wall_temperature) on
@@ -225,7 +226,8 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                       GLOBAL const int *cell_start, GLOBAL const real *materials,
                       GLOBAL const real *table, thermal_params p, GLOBAL real *enthalpy_rate,
                       GLOBAL real *power_laser, GLOBAL real *power_radiation,
-                      GLOBAL real *power_wall, GLOBAL real *power_viscous)
+                      GLOBAL real *power_evaporation, GLOBAL real *power_wall,
+                      GLOBAL real *power_viscous)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -264,15 +266,20 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const real viscous =
             heats ? viscous_dissipation(grad_u, moment, particle_viscosity(materials, material[a], liquid_fraction[a])) / rho_a
                   : REAL(0.0);
-        const real m_a = mass[a];
-        const real emissivity = thermal_material(table, material[a])[THERMAL_EMISSIVITY];
-        const real radiation = p.radiation && !wall_a
-                                   ? radiation_loss(temperature[a], emissivity, sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p) / rho_a
-                                   : REAL(0.0);
+        const real m_a = mass[a], temp_a = temperature[a];
+        const int mat = material[a];
+        const real delta = wall_a ? REAL(0.0) : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
+        const real emissivity = thermal_material(table, mat)[THERMAL_EMISSIVITY];
+        const real radiation = p.radiation ? radiation_loss(temp_a, emissivity, delta, &p) / rho_a : REAL(0.0);
+        const real evaporation =
+            p.evaporative_cooling && delta > REAL(0.0)
+                ? evaporation_heat_flux(materials, mat, temp_a, enthalpy_of_temperature(table, mat, temp_a)) * delta / rho_a
+                : REAL(0.0);
         const real laser = wall_a ? REAL(0.0) : laser_power[a] / rho_a;
-        enthalpy_rate[a] = conduction + viscous + laser - radiation;
+        enthalpy_rate[a] = conduction + viscous + laser - radiation - evaporation;
         power_laser[a] = m_a * laser;
         power_radiation[a] = m_a * radiation;
+        power_evaporation[a] = m_a * evaporation;
         power_wall[a] = wall_a ? -m_a * conduction : REAL(0.0);
         power_viscous[a] = m_a * viscous;
     }

@@ -140,6 +140,28 @@ if(NOT status EQUAL 0 OR at EQUAL -1)
   message(FATAL_ERROR "README.md lacks the output of `amsph columns`:\n${columns}")
 endif()
 
+# README.md carries the melt-pool metric reference that `amsph analyze --metrics` prints.
+execute_process(COMMAND ${AMSPH} analyze --metrics OUTPUT_VARIABLE metrics RESULT_VARIABLE status)
+string(FIND "${readme}" "${metrics}" at)
+if(NOT status EQUAL 0 OR at EQUAL -1)
+  message(FATAL_ERROR "README.md lacks the output of `amsph analyze --metrics`:\n${metrics}")
+endif()
+
+# The analysis of the README example's run; bad input exits 2.
+expect_status(0 ${AMSPH} analyze ${WORK}/run --csv ${WORK}/run_pool.csv)
+file(READ ${WORK}/run_pool.csv pool)
+if(NOT pool MATCHES "^time,melt_particles,")
+  message(FATAL_ERROR "amsph analyze wrote no header to ${WORK}/run_pool.csv:\n${pool}")
+endif()
+expect_status(2 ${AMSPH} analyze)
+expect_text("analyze needs an output directory")
+expect_status(2 ${AMSPH} analyze ${WORK}/plain_dir_without_snapshots)
+expect_text("holds no snapshot")
+expect_status(2 ${AMSPH} analyze ${WORK}/run --scan w)
+expect_text("--scan takes x, y or z: w")
+expect_status(2 ${AMSPH} analyze ${WORK}/run --up x)
+expect_text("must be two different axes")
+
 # README.md documents every case-file key that `amsph keys` knows.
 execute_process(COMMAND ${AMSPH} keys OUTPUT_VARIABLE keys RESULT_VARIABLE status)
 string(REPLACE "\n" ";" rows "${keys}")

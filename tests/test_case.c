@@ -243,6 +243,26 @@ static const bad_case bad_cases[] = {
      HEAD2 "materials:\n  - {name: water, density: 1, specific_heat: 1, conductivity: 1}\n" GEO_BOX
            "    temperature: 300\nthermal: {viscous_heating: true}\n",
      NAME ":17: 'thermal.viscous_heating' needs the fluid module (a 'fluid:' section)"},
+#define EVAPORATION_MAT(extra)                                                                     \
+    HEAD2 "materials:\n  - {name: water, density: 1, sound_speed: 1, specific_heat: 1, conductivity: 1" extra "}\n" \
+        GEO_BOX "    temperature: 300\n"
+    {"recoil without fluid", EVAPORATION_MAT(", recoil_pressure_constant: 1") "thermal: {recoil_pressure: true}\n",
+     NAME ":17: 'thermal.recoil_pressure' needs the fluid module (a 'fluid:' section)"},
+    {"evaporation without an evaporating material", EVAPORATION_MAT("") "thermal: {evaporative_cooling: true}\n",
+     NAME ":17: 'thermal.evaporative_cooling' needs a material that evaporates: give one a "
+          "'recoil_pressure_constant' > 0 (or the preset steel_fuchs)"},
+    {"evaporating material without boiling temperature",
+     EVAPORATION_MAT(", recoil_pressure_constant: 5.4e4, recoil_temperature_constant: 5e4") "fluid: {}\n"
+         "thermal: {recoil_pressure: true}\n",
+     NAME ":9: material 'water' evaporates (recoil_pressure_constant > 0) and needs 'boiling_temperature' > 0"},
+    {"evaporative cooling without the vapour mass constant",
+     EVAPORATION_MAT(", recoil_pressure_constant: 5.4e4, recoil_temperature_constant: 5e4, boiling_temperature: 3000")
+         "thermal: {evaporative_cooling: true}\n",
+     NAME ":9: material 'water' evaporates (recoil_pressure_constant > 0) and needs 'vapour_mass_constant' > 0"},
+    {"sticking coefficient above 1", EVAPORATION_MAT(", sticking_coefficient: 1.5") "thermal: {}\n",
+     NAME ":9: 'materials[0].sticking_coefficient' must be in [0, 1], got 1.5"},
+    {"evaporation temperature not positive", EVAPORATION_MAT("") "thermal: {evaporation_temperature: 0}\n",
+     NAME ":17: 'thermal.evaporation_temperature' must be > 0, got 0"},
 #define SURFACE_MAT(extra) HEAD2 "materials:\n  - {name: water, density: 1, sound_speed: 1" extra "}\n" GEO_BOX
     {"surface without fluid", BASE2 "surface: {}\n", NAME ":17: 'surface' needs the fluid module (a 'fluid:' section)"},
     {"marangoni without temperatures", SURFACE_MAT("") "fluid: {}\nsurface: {marangoni: true}\n",

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The plotting tools on real output: a 2D and a 3D run, the series and a
-snapshot of each (a slab for 3D) drawn to PNG. Skipped (exit 77) where numpy,
+snapshot of each (a slab for 3D) drawn to PNG, and the melt-pool analysis of
+a short run of the recoil pool plotted by `amsph analyze --plot`. Skipped (exit 77) where numpy,
 h5py or matplotlib is missing.
 
 usage: test_plots.py AMSPH SOURCE_DIR WORK_DIR
@@ -63,7 +64,15 @@ def main():
             snap_png, "--field", "pressure", *slab)
         check_png(series_png)
         check_png(snap_png)
-    print("4 passed, 0 failed")
+    pool = os.path.join(work, "recoil_pool")
+    pool_png = os.path.join(work, "recoil_pool.png")
+    run(amsph, "run", os.path.join(source, "cases/am/recoil_pool_2d.yaml"), "-o", pool, "--quiet", "--max-steps", "400")
+    proc = subprocess.run([amsph, "analyze", pool, "--plot", pool_png], capture_output=True, text=True,
+                          env=dict(os.environ, AMSPH_PYTHON=sys.executable, AMSPH_SOURCE_DIR=source))
+    if proc.returncode != 0:
+        sys.exit(f"amsph analyze --plot failed:\n{proc.stdout}{proc.stderr}")
+    check_png(pool_png)
+    print("5 passed, 0 failed")
 
 
 if __name__ == "__main__":

@@ -3,10 +3,12 @@
 
     tools/plot_series.py OUTDIR/series.csv -o series.png
     tools/plot_series.py OUTDIR/series.csv -o energy.png --columns kinetic_energy total_mass
+    tools/plot_series.py OUTDIR/melt_pool.csv -o pool.png --units-from metrics --columns melt_depth
 
-Each column gets its own panel, labelled with its unit (from `amsph columns`
-when the amsph binary is given, else the name alone). Empty cells (a column
-that does not apply to the case) are skipped.
+Each column gets its own panel, labelled with its unit (from `amsph columns`,
+or `amsph analyze --metrics` for a melt-pool analysis, when the amsph binary
+is given, else the name alone). Empty cells (a column that does not apply to
+the case) are skipped, and a column with no value at all gets no panel.
 """
 import argparse
 import csv
@@ -35,11 +37,14 @@ def read_series(path):
     return columns
 
 
-def units_from(amsph):
-    """Column units from `amsph columns` (a Markdown table)."""
+REFERENCES = {"columns": ["columns"], "metrics": ["analyze", "--metrics"]}
+
+
+def units_from(amsph, reference):
+    """Column units from `amsph columns` or `amsph analyze --metrics` (a Markdown table)."""
     if not amsph:
         return {}
-    text = subprocess.run([amsph, "columns"], capture_output=True, text=True, check=True).stdout
+    text = subprocess.run([amsph] + REFERENCES[reference], capture_output=True, text=True, check=True).stdout
     units = {}
     for line in text.splitlines():
         cells = [c.strip() for c in line.strip("|").split("|")]
@@ -54,6 +59,9 @@ def main():
     ap.add_argument("-o", "--output", required=True, help="PNG file to write")
     ap.add_argument("--columns", nargs="+", help=f"columns to plot (default: {' '.join(DEFAULT_COLUMNS)})")
     ap.add_argument("--amsph", help="amsph binary, for the units of the columns")
+    ap.add_argument("--units-from", choices=sorted(REFERENCES), default="columns",
+                    help="the reference the units come from: the series columns (default) or the "
+                         "melt-pool metrics")
     args = ap.parse_args()
 
     data = read_series(args.series)
@@ -63,7 +71,10 @@ def main():
         raise SystemExit(f"{args.series} has no column {', '.join(missing)}; it has: {', '.join(data)}")
     if "time" not in data:
         raise SystemExit(f"{args.series} has no time column")
-    units = units_from(args.amsph)
+    units = units_from(args.amsph, args.units_from)
+    wanted = [c for c in wanted if not np.all(np.isnan(data[c]))]  # columns that do not apply
+    if not wanted:
+        raise SystemExit(f"{args.series}: every column asked for is empty")
 
     fig, axes = plt.subplots(len(wanted), 1, sharex=True, figsize=(7, 1.8 * len(wanted) + 0.6), squeeze=False)
     for ax, name in zip(axes[:, 0], wanted):
