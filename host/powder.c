@@ -117,43 +117,85 @@ static double fall(const settling *s, const double p[3], double r, int skip, int
     return height;
 }
 
-/* Rolling on grain j: the centre moves on the circle p(theta) = c_j +
- * R (sin theta u + cos theta e_up), R = r + r_j, theta from the vertical,
- * u the unit vector across `up` towards the grain. */
+/* A rolling grain's centre moves on the circle
+ *   p(phi) = m + rho (cos phi e1 + sin phi e2),  phi from `from` to `to`:
+ * on one grain j, m = c_j, rho = r + r_j, e1 = e_up, e2 the lateral unit
+ * vector towards the grain, phi its angle from the vertical, up to the
+ * side of j (pi/2, where it falls off); on two grains (3D), the circle of
+ * the points that touch both, from the grain's place (phi = 0) down to its
+ * lowest point. */
 typedef struct {
-    int on;          /* the grain rolled on */
-    double u[3];     /* lateral unit vector */
-    double reach;    /* R */
-    double theta;    /* current angle */
-} roll;
+    double m[3], e1[3], e2[3];
+    double rho, from, to;
+} circle;
 
-static void roll_position(const settling *s, const roll *w, double theta, double p[3])
+static void circle_point(const circle *w, double phi, double p[3])
 {
-    const double *c = s->grain[w->on].centre;
     for (int k = 0; k < 3; ++k)
-        p[k] = c[k] + w->reach * sin(theta) * w->u[k];
-    p[s->up] += w->reach * cos(theta);
+        p[k] = w->m[k] + w->rho * (cos(phi) * w->e1[k] + sin(phi) * w->e2[k]);
 }
 
-/* The roll on grain j of the grain at p; false when p sits on top of j's
- * axis (no downhill direction). */
-static int start_roll(const settling *s, int j, const double p[3], double r, roll *w)
+static double distance(const double a[3], const double b[3])
+{
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+        d2 += (a[k] - b[k]) * (a[k] - b[k]);
+    return sqrt(d2);
+}
+
+/* Unit vector (p - c) / |p - c|. */
+static void unit_from(const double c[3], const double p[3], double n[3])
+{
+    const double d = distance(p, c);
+    for (int k = 0; k < 3; ++k)
+        n[k] = (p[k] - c[k]) / d;
+}
+
+/* The roll of the grain at p on grain j alone; false when there is none:
+ * p right above j (balanced on top) or at or below its side. */
+static int roll_on_one(const settling *s, int j, const double p[3], double r, circle *w)
 {
     const double *c = s->grain[j].centre;
     const double lateral = sqrt(lateral_distance2(s, p, c));
-    w->on = j;
-    w->reach = r + s->grain[j].radius;
-    memset(w->u, 0, sizeof w->u);
-    if (lateral <= CONTACT_TOL * w->reach)
-        return 0;
+    memset(w, 0, sizeof *w);
+    memcpy(w->m, c, sizeof w->m);
+    w->rho = r + s->grain[j].radius;
+    w->e1[s->up] = 1.0;
     for (int k = 0; k < s->dim; ++k)
-        if (k != s->up)
-            w->u[k] = (p[k] - c[k]) / lateral;
-    w->theta = atan2(lateral, p[s->up] - c[s->up]);
-    return 1;
+        if (k != s->up && lateral > 0.0)
+            w->e2[k] = (p[k] - c[k]) / lateral;
+    w->from = atan2(lateral, p[s->up] - c[s->up]);
+    w->to = 0.5 * PI;
+    return lateral > CONTACT_TOL * w->rho && w->from < w->to;
 }
 
-/* First angle in (from, to] at which A sin theta + B cos theta = C, or
+/* The roll of the grain at p on grains j and k together (3D), downhill
+ * along their circle; false at its lowest point. */
+static int roll_on_two(const settling *s, int j, int k, const double p[3], double r, circle *w)
+{
+    const double *cj = s->grain[j].centre, *ck = s->grain[k].centre;
+    const double d = distance(cj, ck), rj = r + s->grain[j].radius, rk = r + s->grain[k].radius;
+    const double along = (d * d + rj * rj - rk * rk) / (2.0 * d);
+    double a[3];
+    for (int q = 0; q < 3; ++q) {
+        a[q] = (ck[q] - cj[q]) / d;
+        w->m[q] = cj[q] + along * a[q];
+    }
+    w->rho = sqrt(fmax(rj * rj - along * along, 0.0));
+    unit_from(w->m, p, w->e1);
+    /* e2 = a x e1, turned downhill */
+    w->e2[0] = a[1] * w->e1[2] - a[2] * w->e1[1];
+    w->e2[1] = a[2] * w->e1[0] - a[0] * w->e1[2];
+    w->e2[2] = a[0] * w->e1[1] - a[1] * w->e1[0];
+    const double sign = w->e2[s->up] > 0.0 ? -1.0 : 1.0;
+    for (int q = 0; q < 3; ++q)
+        w->e2[q] *= sign;
+    w->from = 0.0;
+    w->to = atan2(-w->e2[s->up], -w->e1[s->up]); /* where the height m + rho (cos e1 + sin e2) . e_up is least */
+    return w->e2[s->up] < -CONTACT_TOL && w->to > CONTACT_TOL;
+}
+
+/* First angle in (from, to] at which A sin phi + B cos phi = C, or
  * INFINITY; `leaving`: the root nearest `from` is the contact the grain is
  * leaving there, and only the other one counts. */
 static double first_root(double A, double B, double C, double from, double to, int leaving)
@@ -176,108 +218,145 @@ static double first_root(double A, double B, double C, double from, double to, i
     return best;
 }
 
-/* Whether the rolling grain (radius r) touches grain k now (the support it
- * has just left, or one it has just fallen off). */
-static int in_contact(const settling *s, const roll *w, int k, double r)
+/* The first contact of a grain of radius r rolling on circle w (supports
+ * `on`, `count` of them): the substrate, a side wall of the region, a grain
+ * (*hit = its index) or none before the circle's end (*hit = NO_CONTACT,
+ * returns `to`). A grain it touches at the start counts at once when the
+ * roll goes into it, and only where it meets it again when the roll takes
+ * it away. Each contact reads A sin phi + B cos phi = C: for the plane
+ * x_k = b, rho (e2_k sin + e1_k cos) = b - m_k; for grain q, with
+ * D = m - c_q, 2 rho (D.e2 sin + D.e1 cos) = (r + r_q)^2 - |D|^2 - rho^2. */
+static double roll_contact(const settling *s, const circle *w, const int *on, int count, double r, int *hit)
 {
-    double p[3];
-    roll_position(s, w, w->theta, p);
-    const amsph_grain *g = &s->grain[k];
-    double d2 = 0.0;
-    for (int a = 0; a < 3; ++a)
-        d2 += (p[a] - g->centre[a]) * (p[a] - g->centre[a]);
-    return fabs(sqrt(d2) - (r + g->radius)) <= 1e3 * CONTACT_TOL * (r + g->radius);
-}
-
-/* The first contact of roll w before the grain (radius r) passes its
- * support's side (theta = pi/2): the substrate, a side wall of the region,
- * a grain (*hit = its index) or none (returns pi/2). For grain k, with
- * d = c_j - c_k, |p(theta) - c_k| = r + r_k reads
- *   2 R (d.u sin theta + d.e cos theta) = (r + r_k)^2 - |d|^2 - R^2. */
-static double roll_contact(const settling *s, const roll *w, double r, int *hit)
-{
-    const double *c = s->grain[w->on].centre;
-    double first = 0.5 * PI;
+    double first = w->to;
     *hit = NO_CONTACT;
-    const double level = (s->floor + r - c[s->up]) / w->reach;
-    if (level >= -1.0 && level <= 1.0 && acos(level) > w->theta && acos(level) <= first) {
-        first = acos(level);
+    const double floor_phi = first_root(w->rho * w->e2[s->up], w->rho * w->e1[s->up],
+                                        s->floor + r - w->m[s->up], w->from, first, 0);
+    if (floor_phi <= first) {
+        first = floor_phi;
         *hit = SUBSTRATE;
     }
     for (int k = 0; k < s->dim; ++k) {
-        if (w->u[k] == 0.0)
+        if (k == s->up)
             continue;
-        const double wall = w->u[k] > 0.0 ? s->hi[k] - r : s->lo[k] + r;
-        const double along = (wall - c[k]) / (w->reach * w->u[k]);
-        if (along >= 0.0 && along <= 1.0 && asin(along) > w->theta && asin(along) < first) {
-            first = asin(along);
-            *hit = SIDE_WALL;
+        for (int side = 0; side < 2; ++side) {
+            const double wall = side ? s->hi[k] - r : s->lo[k] + r;
+            const double phi = first_root(w->rho * w->e2[k], w->rho * w->e1[k], wall - w->m[k], w->from, first, 0);
+            if (phi < first) {
+                first = phi;
+                *hit = SIDE_WALL;
+            }
         }
     }
-    double e[3] = {0.0, 0.0, 0.0};
-    e[s->up] = 1.0;
-    for (int k = 0; k < s->n; ++k) {
-        const amsph_grain *g = &s->grain[k];
-        double d[3];
-        for (int a = 0; a < 3; ++a)
-            d[a] = c[a] - g->centre[a];
+    double p[3];
+    circle_point(w, w->from, p);
+    for (int q = 0; q < s->n; ++q) {
+        const amsph_grain *g = &s->grain[q];
         const double touch = r + g->radius;
-        if (k == w->on || dot(d, d) >= (w->reach + touch) * (w->reach + touch))
+        int support = 0;
+        for (int i = 0; i < count; ++i)
+            support |= on[i] == q;
+        double D[3];
+        for (int k = 0; k < 3; ++k)
+            D[k] = w->m[k] - g->centre[k];
+        if (support || dot(D, D) >= (w->rho + touch) * (w->rho + touch))
             continue;
-        const double A = dot(d, w->u), B = dot(d, e);
-        const int touching = in_contact(s, w, k, r);
-        if (touching && A * cos(w->theta) - B * sin(w->theta) <= 0.0) {
-            first = w->theta; /* touching and rolling into it: stopped here */
-            *hit = k;
+        const double A = dot(D, w->e2), B = dot(D, w->e1);
+        const int touching = fabs(distance(p, g->centre) - touch) <= 1e3 * CONTACT_TOL * touch;
+        if (touching && A * cos(w->from) - B * sin(w->from) <= 0.0) {
+            first = w->from; /* touching and rolling into it: stopped here */
+            *hit = q;
             continue;
         }
-        const double theta = first_root(A, B, (touch * touch - dot(d, d) - w->reach * w->reach) / (2.0 * w->reach),
-                                        w->theta, first, touching);
-        if (theta < first) {
-            first = theta;
-            *hit = k;
+        const double phi = first_root(A, B, (touch * touch - dot(D, D) - w->rho * w->rho) / (2.0 * w->rho),
+                                      w->from, first, touching);
+        if (phi < first) {
+            first = phi;
+            *hit = q;
         }
     }
     return first;
 }
 
-/* Drops a grain of radius r at lateral position p and lets it settle;
- * p becomes its resting centre. False when it does not come to rest. */
+/* The forces of supports `on` (count of them, each pushing along its
+ * normal n_i from its centre to p) that hold up a grain at p: lambda with
+ * sum lambda_i n_i the part of e_up the normals span (least squares,
+ * G lambda = b with G_ij = n_i . n_j, b_i = n_i . e_up, by Cramer's rule).
+ * Returns the support with the most negative force, or -1 when all push. */
+static int pulling_support(const settling *s, const int *on, int count, const double p[3])
+{
+    double n[3][3], G[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, b[3] = {0, 0, 0};
+    for (int i = 0; i < count; ++i) {
+        unit_from(s->grain[on[i]].centre, p, n[i]);
+        b[i] = n[i][s->up];
+    }
+    for (int i = 0; i < count; ++i)
+        for (int j = 0; j < count; ++j)
+            G[i][j] = dot(n[i], n[j]);
+    const double det = G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
+                       G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
+                       G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
+    int worst = -1;
+    double least = 0.0;
+    for (int i = 0; i < count; ++i) {
+        double M[3][3];
+        memcpy(M, G, sizeof M);
+        for (int j = 0; j < 3; ++j)
+            M[j][i] = b[j];
+        const double lambda = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                               M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                               M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) / det;
+        if (lambda < least) {
+            least = lambda;
+            worst = i;
+        }
+    }
+    return worst;
+}
+
+/* Drops a grain of radius r at lateral position p and lets it settle
+ * (header); p becomes its resting centre. False when it does not come to
+ * rest within MAX_EVENTS contacts. The grains it rests on are `on`: none
+ * (falling), one (rolling on it), two (2D: resting; 3D: rolling on both
+ * unless at the bottom of their circle), three (3D: resting when all push). */
 static int settle(const settling *s, double p[3], double r)
 {
-    int skip = -1;
+    int on[3], count = 0, skip = -1;
     for (int event = 0; event < MAX_EVENTS; ++event) {
-        int hit;
-        p[s->up] = fall(s, p, r, skip, &hit);
-        if (hit == SUBSTRATE)
-            return 1;
-        roll w;
-        if (!start_roll(s, hit, p, r, &w))
-            return 1; /* balanced on top of a grain */
-        for (; event < MAX_EVENTS; ++event) {
-            int next;
-            const double theta = roll_contact(s, &w, r, &next);
-            roll_position(s, &w, theta, p);
-            if (next == SUBSTRATE || next == SIDE_WALL)
-                return 1; /* rolled down onto the substrate, or against a side */
-            if (next == NO_CONTACT) {
-                skip = w.on; /* past the side of its support: falls again */
-                break;
-            }
-            /* On two grains: it goes on rolling on the second only if
-             * that takes it away from the first. */
-            roll v;
-            if (!start_roll(s, next, p, r, &v) || v.theta >= 0.5 * PI)
-                return 1; /* on top of it, or wedged against its side */
-            double ahead[3], away[3];
-            roll_position(s, &v, v.theta + 1e-6, ahead);
-            for (int k = 0; k < 3; ++k) {
-                away[k] = p[k] - s->grain[w.on].centre[k];
-                ahead[k] -= p[k];
-            }
-            if (dot(ahead, away) <= 0.0)
+        if (count == 0) {
+            int hit;
+            p[s->up] = fall(s, p, r, skip, &hit);
+            if (hit == SUBSTRATE)
                 return 1;
-            w = v;
+            on[count++] = hit;
+            continue;
+        }
+        const int pulling = count > 1 ? pulling_support(s, on, count, p) : -1;
+        if (pulling >= 0) { /* it leaves that support */
+            on[pulling] = on[--count];
+            continue;
+        }
+        if (count == s->dim)
+            return 1; /* held by dim supports that all push */
+        circle w;
+        const int rolls = count == 1 ? roll_on_one(s, on[0], p, r, &w) : roll_on_two(s, on[0], on[1], p, r, &w);
+        if (!rolls) {
+            if (count == 2 || w.from < 0.5 * PI)
+                return 1; /* at the bottom of the circle of two, or on top of one */
+            skip = on[0]; /* at or below its support's side: falls */
+            count = 0;
+            continue;
+        }
+        int next;
+        const double phi = roll_contact(s, &w, on, count, r, &next);
+        circle_point(&w, phi, p);
+        if (next == SUBSTRATE || next == SIDE_WALL)
+            return 1;
+        if (next >= 0)
+            on[count++] = next;
+        else if (count == 1) { /* past the side of its support: falls again */
+            skip = on[0];
+            count = 0;
         }
     }
     return 0;

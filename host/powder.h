@@ -13,21 +13,21 @@
  *              to 32 um);
  *   mixed:     radius small_radius with probability small_fraction, else
  *              grain_radius (Russell §5.1.1.1, 15 and 30 um).
- * The random beds are built by sequential deposition: each grain, of a
- * seeded random radius, is dropped at a seeded random lateral position
- * and lowered until it meets the substrate or a grain; on a grain it
- * rolls down the vertical plane through the two centres until it meets
- * the substrate, a side of the region (a wall) or a second grain; it
- * stops there unless rolling on the second grain takes it away from the
- * first, and falls again if it rolls past the first grain's side. In 2D
- * every grain so ends on the substrate, or on a grain and a wall, or on
- * two grains one on each side of its centre (a stable rest, as in
- * Visscher & Bolsterli 1972); in 3D on the substrate or on two supports (a
- * stable rest would need rolling on both to a third). A grain that would
- * end above the region's top face (the spreader's height) is dropped; the
+ * The random beds are built by sequential deposition (Visscher & Bolsterli
+ * 1972): each grain, of a seeded random radius, is dropped at a seeded
+ * random lateral position and falls until it meets the substrate or a
+ * grain; on one grain it rolls down the vertical plane through the two
+ * centres, on two (3D) down the circle of the points that touch both,
+ * until it meets another grain, the substrate or a side of the region
+ * (the sides are walls); it leaves a support that would have to pull to
+ * hold it (the supports' normal forces, least squares) and falls again
+ * when it rolls past the side of its only one. It rests on the substrate,
+ * on a wall, on dim grains that all push (in 2D one each side of its
+ * centre), or at the bottom of the circle of two. A grain that would rest
+ * above the region's top face (the spreader's height) is not laid; the
  * bed is full after MISSES drops in a row fail.
  * Everything follows from the seed (a splitmix64 generator), so a seed
- * gives the same bed on every machine. */
+ * gives the same bed wherever the C library's sin, cos and log agree. */
 #ifndef AMSPH_POWDER_H
 #define AMSPH_POWDER_H
 

@@ -3,7 +3,8 @@
  *   - a seed gives the same bed every time, another seed another bed;
  *   - no two grains overlap, every grain lies in the region;
  *   - every grain rests: on the substrate, or (2D) on two supports (grains
- *     or a side wall) one on each side of its centre, or (3D) on two;
+ *     or a side wall) one on each side of its centre, or (3D) on three
+ *     grains, or on a side wall and one or two grains;
  *   - radii lie within the distribution's bounds, and the sample of a
  *     log-normal bed has the mean and standard deviation of ln r of the
  *     truncated normal law within 4 standard errors; a mixed bed has the
@@ -13,9 +14,8 @@
  *     walls, the substrate and the top, lies between 0.78 (random
  *     deposition with rolling gives about 0.82) and the densest packing
  *     of discs, pi / (2 sqrt 3) = 0.9069; in 3D below the densest packing
- *     of spheres, pi / (3 sqrt 2) = 0.7405, and above 0.35 (grains that
- *     stop on two supports pack looser than the 0.58 of Visscher &
- *     Bolsterli's stable rests on three);
+ *     of spheres, pi / (3 sqrt 2) = 0.7405, and above 0.55 (Visscher &
+ *     Bolsterli 1972 found 0.58 for this deposition);
  *   - the regular bed is Russell's row of touching grains;
  *   - the scene fills the grains, and only them, with lattice particles. */
 #include <math.h>
@@ -72,7 +72,7 @@ static void test_reproducible(void)
 /* Supports of grain i: the substrate, side walls and the touching grains
  * laid before it; in 2D those on its left and right. */
 typedef struct {
-    int substrate, count, left, right;
+    int substrate, walls, count, left, right;
 } supports;
 
 static supports supports_of(const amsph_powder *bed, const amsph_geometry *g, int i)
@@ -84,6 +84,7 @@ static supports supports_of(const amsph_powder *bed, const amsph_geometry *g, in
     for (int k = 0; k < up; ++k) {
         const int low = fabs(a->centre[k] - a->radius - g->min[k]) <= TOL * a->radius;
         const int high = fabs(a->centre[k] + a->radius - g->max[k]) <= TOL * a->radius;
+        s.walls += low + high;
         s.count += low + high;
         s.left += low;
         s.right += high;
@@ -121,7 +122,8 @@ static void check_bed(const amsph_powder *bed, const amsph_geometry *g, const ch
         for (int k = 0; k < dim; ++k)
             outside += a->centre[k] - a->radius < g->min[k] - TOL || a->centre[k] + a->radius > g->max[k] + TOL;
         const supports s = supports_of(bed, g, i);
-        const int rests = s.substrate || (dim == 2 ? s.left >= 1 && s.right >= 1 : s.count >= 2);
+        const int rests = s.substrate || (dim == 2 ? s.left >= 1 && s.right >= 1
+                                                   : s.count >= 3 || (s.walls >= 1 && s.count >= 2));
         unsupported += !rests;
         if (!rests && unsupported <= 3)
             fprintf(stderr, "%s: grain %d at (%g, %g, %g), radius %g, has %d supports (%d left, %d right)\n",
@@ -167,6 +169,14 @@ static double Phi(double x)
     return 0.5 * erfc(-x / sqrt(2.0));
 }
 
+/* Whether a grain lies in the lower 90% of the region: the draws laid
+ * there are a sample of the law; at the top, where the bed fills up from
+ * many failed drops, small grains fit where large ones do not. */
+static int below_top(const amsph_grain *a, const amsph_geometry *g)
+{
+    return a->centre[1] < g->min[1] + 0.9 * (g->max[1] - g->min[1]);
+}
+
 /* ln r of a log-normal bed against the normal law N(mu, sigma) truncated to
  * [ln r_min, ln r_max]: with a, b the bounds in units of sigma from mu and
  * Z = Phi(b) - Phi(a),
@@ -175,36 +185,43 @@ static double Phi(double x)
 static void test_lognormal_statistics(void)
 {
     amsph_geometry g = bed_geometry(2, AMSPH_POWDER_LOGNORMAL, 11);
-    g.max[1] = 200.0; /* tall: the grains of the top layer, where small ones fit better, are few */
+    g.max[1] = 200.0;
     amsph_powder bed;
     CHECK_OK(amsph_powder_deposit(&g, 2, &bed));
     double sum = 0.0, sum2 = 0.0;
-    for (int i = 0; i < bed.n; ++i) {
-        const double l = log(bed.grain[i].radius);
-        sum += l;
-        sum2 += l * l;
-    }
-    const double mean = sum / bed.n, sd = sqrt(sum2 / bed.n - mean * mean);
+    int n = 0;
+    for (int i = 0; i < bed.n; ++i)
+        if (below_top(&bed.grain[i], &g)) {
+            const double l = log(bed.grain[i].radius);
+            sum += l;
+            sum2 += l * l;
+            ++n;
+        }
+    const double mean = sum / n, sd = sqrt(sum2 / n - mean * mean);
     const double mu = log(g.grain_radius), sigma = g.log_sd;
     const double a = (log(g.grain_radius_min) - mu) / sigma, b = (log(g.grain_radius_max) - mu) / sigma;
     const double z = Phi(b) - Phi(a), shift = (phi(a) - phi(b)) / z;
     const double law_mean = mu + sigma * shift;
     const double law_sd = sigma * sqrt(1.0 + (a * phi(a) - b * phi(b)) / z - shift * shift);
-    printf("log-normal bed: %d grains, ln r mean %.4f (law %.4f), sd %.4f (law %.4f)\n", bed.n, mean,
-           law_mean, sd, law_sd);
-    CHECK(fabs(mean - law_mean) < 4.0 * law_sd / sqrt(bed.n), "mean of ln r %g, law %g", mean, law_mean);
-    CHECK(fabs(sd - law_sd) < 4.0 * law_sd / sqrt(2.0 * bed.n), "sd of ln r %g, law %g", sd, law_sd);
+    printf("log-normal bed: %d grains below the top, ln r mean %.4f (law %.4f), sd %.4f (law %.4f)\n", n,
+           mean, law_mean, sd, law_sd);
+    CHECK(fabs(mean - law_mean) < 4.0 * law_sd / sqrt(n), "mean of ln r %g, law %g", mean, law_mean);
+    CHECK(fabs(sd - law_sd) < 4.0 * law_sd / sqrt(2.0 * n), "sd of ln r %g, law %g", sd, law_sd);
     amsph_powder_free(&bed);
 
     g = bed_geometry(2, AMSPH_POWDER_MIXED, 11);
     g.max[1] = 200.0;
     CHECK_OK(amsph_powder_deposit(&g, 2, &bed));
     int small = 0;
+    n = 0;
     for (int i = 0; i < bed.n; ++i)
-        small += bed.grain[i].radius == g.small_radius;
-    const double share = (double)small / bed.n, p = g.small_fraction;
-    printf("mixed bed: %d grains, share of small grains %.4f (asked %.4f)\n", bed.n, share, p);
-    CHECK(fabs(share - p) < 4.0 * sqrt(p * (1.0 - p) / bed.n), "share of small grains %g, asked %g", share, p);
+        if (below_top(&bed.grain[i], &g)) {
+            small += bed.grain[i].radius == g.small_radius;
+            ++n;
+        }
+    const double share = (double)small / n, p = g.small_fraction;
+    printf("mixed bed: %d grains below the top, share of small grains %.4f (asked %.4f)\n", n, share, p);
+    CHECK(fabs(share - p) < 4.0 * sqrt(p * (1.0 - p) / n), "share of small grains %g, asked %g", share, p);
     amsph_powder_free(&bed);
 }
 
@@ -241,7 +258,7 @@ static void test_packing(void)
         }
         const double fraction = window_fraction(&bed, lo, hi, dim == 2 ? 0.05 : 0.1);
         const double densest = dim == 2 ? PI / (2.0 * sqrt(3.0)) : PI / (3.0 * sqrt(2.0));
-        const double least = dim == 2 ? 0.78 : 0.35;
+        const double least = dim == 2 ? 0.78 : 0.55;
         printf("monodisperse %dD bed: %d grains, packing fraction %.4f of the window, %.4f of the region\n",
                dim, bed.n, fraction, amsph_powder_packing_fraction(&bed, &g));
         CHECK(fraction > least && fraction < densest, "%dD packing fraction %g outside (%g, %g)", dim,
