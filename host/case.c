@@ -40,6 +40,7 @@
 _Static_assert(sizeof(amsph_kernel_type) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_backend_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_shape) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_powder_distribution) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_absorption) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_material_preset) == sizeof(int), "enum size");
@@ -103,7 +104,12 @@ static const choice shape_choices[] = {{"box", AMSPH_SHAPE_BOX, 0},
                                        {"circle", AMSPH_SHAPE_CIRCLE, 2},
                                        {"sphere", AMSPH_SHAPE_SPHERE, 3},
                                        {"cylinder", AMSPH_SHAPE_CYLINDER, 3},
+                                       {"powder_bed", AMSPH_SHAPE_POWDER_BED, 0},
                                        {NULL, 0, 0}};
+static const choice distribution_choices[] = {{"regular", AMSPH_POWDER_REGULAR, 0},
+                                              {"lognormal", AMSPH_POWDER_LOGNORMAL, 0},
+                                              {"mixed", AMSPH_POWDER_MIXED, 0},
+                                              {NULL, 0, 0}};
 static const choice kind_choices[] = {{"fluid", AMSPH_KIND_FLUID, 0},
                                       {"wall", AMSPH_KIND_WALL, 0},
                                       {"solid", AMSPH_KIND_SOLID, 0},
@@ -189,6 +195,7 @@ static const preset presets[] = {
 #define VARIANT_BIT(v) (1u << (v))
 #define BOX_ONLY VARIANT_BIT(AMSPH_SHAPE_BOX)
 #define CYLINDER_ONLY VARIANT_BIT(AMSPH_SHAPE_CYLINDER)
+#define POWDER_ONLY VARIANT_BIT(AMSPH_SHAPE_POWDER_BED)
 #define ROUND_SHAPES (VARIANT_BIT(AMSPH_SHAPE_CIRCLE) | VARIANT_BIT(AMSPH_SHAPE_SPHERE) | CYLINDER_ONLY)
 #define VOLUMETRIC_ONLY VARIANT_BIT(AMSPH_ABSORPTION_VOLUMETRIC)
 #define SURFACE_ONLY VARIANT_BIT(AMSPH_ABSORPTION_SURFACE)
@@ -392,8 +399,11 @@ static const key_spec specs[] = {
      .offset = LASER(absorption_coefficient),
      .doc = "Beer-Lambert absorption coefficient α (Russell 2018 Eq. 3.40)"},
     {.section = SEC_LASER, .key = "absorptivity", .type = VT_NUMBER,
-     .flags = F_ABOVE_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 1, .variants = SURFACE_ONLY,
-     .offset = LASER(absorptivity), .doc = "Absorbed fraction ζ of the irradiance (Fuchs et al. 2022 Eq. 17)"},
+     .flags = F_ABOVE_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 1,
+     .offset = LASER(absorptivity),
+     .doc = "Fraction ζ of the irradiance that is not reflected: `surface` absorbs it on the faces "
+            "(Fuchs et al. 2022 Eq. 17), `volumetric` sends it down the Beer-Lambert columns "
+            "(Russell 2018 §4.4: all non-reflected power absorbed)"},
     {.section = SEC_LASER, .key = "direction", .type = VT_VECTOR, .flags = F_NO_DEFAULT,
      .offset = LASER(direction),
      .rule = "nonzero; normalised on reading; perpendicular to periodic directions",
@@ -563,10 +573,12 @@ static const key_spec specs[] = {
      .offset = GEO(material), .rule = "name of a material",
      .doc = "Material of the particles"},
     {.section = SEC_GEOMETRY, .key = "min", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
-     .variants = BOX_ONLY, .offset = GEO(min), .doc = "Lower corner of the box"},
+     .variants = BOX_ONLY | POWDER_ONLY, .offset = GEO(min),
+     .doc = "Lower corner of the box; of a powder bed's region, whose bottom face the grains rest on"},
     {.section = SEC_GEOMETRY, .key = "max", .type = VT_VECTOR, .unit = "m", .flags = F_REQUIRED,
-     .variants = BOX_ONLY, .offset = GEO(max), .rule = "each > `min`",
-     .doc = "Upper corner of the box"},
+     .variants = BOX_ONLY | POWDER_ONLY, .offset = GEO(max),
+     .rule = "each > `min`; a powder bed's region holds a grain of the largest radius",
+     .doc = "Upper corner of the box; of a powder bed's region (its top face: the spreader's height)"},
     {.section = SEC_GEOMETRY, .key = "center", .type = VT_VECTOR, .unit = "m",
      .flags = F_REQUIRED, .variants = ROUND_SHAPES, .offset = GEO(center),
      .doc = "Centre; for a cylinder the centre of its base"},
@@ -585,6 +597,44 @@ static const key_spec specs[] = {
     {.section = SEC_GEOMETRY, .key = "open", .type = VT_FACES, .choices = face_choices,
      .variants = BOX_ONLY, .offset = GEO(open_faces), .rule = "only with `layers` > 0",
      .doc = "Faces of the tank left without wall"},
+    {.section = SEC_GEOMETRY, .key = "distribution", .type = VT_CHOICE,
+     .choices = distribution_choices, .def = AMSPH_POWDER_REGULAR, .variants = POWDER_ONLY,
+     .offset = GEO(distribution),
+     .doc = "Grain radii: `regular` touching grains of `grain_radius` on a square array (Russell "
+            "2018 §5.1.1); `lognormal` and `mixed` random, settled by sequential deposition from "
+            "`seed` (host/powder.h)"},
+    {.section = SEC_GEOMETRY, .key = "grain_radius", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .variants = POWDER_ONLY,
+     .offset = GEO(grain_radius), .rule = "at least 2 `dx` (checked when the scene is built)",
+     .doc = "`regular`: radius of every grain; `lognormal`: exp of the mean of ln r (the median "
+            "before truncation); `mixed`: radius of the large grains"},
+    {.section = SEC_GEOMETRY, .key = "log_sd", .type = VT_NUMBER,
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .variants = POWDER_ONLY, .offset = GEO(log_sd),
+     .rule = "required for `lognormal`, only there",
+     .doc = "Standard deviation of ln r of the log-normal radii"},
+    {.section = SEC_GEOMETRY, .key = "grain_radius_min", .type = VT_NUMBER, .unit = "m",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .variants = POWDER_ONLY,
+     .offset = GEO(grain_radius_min),
+     .rule = "required for `lognormal`, only there; <= `grain_radius`; at least 2 `dx`",
+     .doc = "Smallest radius of the truncated log-normal radii"},
+    {.section = SEC_GEOMETRY, .key = "grain_radius_max", .type = VT_NUMBER, .unit = "m",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .variants = POWDER_ONLY,
+     .offset = GEO(grain_radius_max),
+     .rule = "required for `lognormal`, only there; >= `grain_radius`, > `grain_radius_min`",
+     .doc = "Largest radius of the truncated log-normal radii"},
+    {.section = SEC_GEOMETRY, .key = "small_radius", .type = VT_NUMBER, .unit = "m",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .variants = POWDER_ONLY,
+     .offset = GEO(small_radius),
+     .rule = "required for `mixed`, only there; < `grain_radius`; at least 2 `dx`",
+     .doc = "Radius of the small grains of a mixed bed"},
+    {.section = SEC_GEOMETRY, .key = "small_fraction", .type = VT_NUMBER,
+     .flags = F_FROM_LO | F_UP_TO_HI, .lo = 0, .hi = 1, .def = 0.5, .variants = POWDER_ONLY,
+     .offset = GEO(small_fraction), .rule = "only for `mixed`",
+     .doc = "Probability that a grain of a mixed bed is small (number fraction)"},
+    {.section = SEC_GEOMETRY, .key = "seed", .type = VT_INT, .flags = F_FROM_LO, .lo = 0,
+     .def = 1, .variants = POWDER_ONLY, .offset = GEO(seed),
+     .rule = "only for `lognormal` and `mixed`",
+     .doc = "Seed of the random radii and drop positions: the same seed gives the same bed"},
     {.section = SEC_GEOMETRY, .key = "velocity", .type = VT_VECTOR, .unit = "m/s",
      .offset = GEO(velocity), .doc = "Initial velocity"},
     {.section = SEC_GEOMETRY, .key = "temperature", .type = VT_NUMBER, .unit = "K",
@@ -1594,6 +1644,62 @@ static int normalise_vector(parser *p, const scope *sc, const char *key, double 
     return 0;
 }
 
+/* The keys of each grain distribution of a powder bed (host/powder.h). */
+#define DISTRIBUTION_BIT(d) (1u << (d))
+static const struct {
+    const char *key;
+    unsigned distributions; /* DISTRIBUTION_BITs it applies to */
+    int required;           /* there */
+} powder_keys[] = {
+    {"log_sd", DISTRIBUTION_BIT(AMSPH_POWDER_LOGNORMAL), 1},
+    {"grain_radius_min", DISTRIBUTION_BIT(AMSPH_POWDER_LOGNORMAL), 1},
+    {"grain_radius_max", DISTRIBUTION_BIT(AMSPH_POWDER_LOGNORMAL), 1},
+    {"small_radius", DISTRIBUTION_BIT(AMSPH_POWDER_MIXED), 1},
+    {"small_fraction", DISTRIBUTION_BIT(AMSPH_POWDER_MIXED), 0},
+    {"seed", DISTRIBUTION_BIT(AMSPH_POWDER_LOGNORMAL) | DISTRIBUTION_BIT(AMSPH_POWDER_MIXED), 0},
+};
+
+/* Each distribution's keys where they apply and nowhere else; radii in
+ * order; a region that holds the largest grain. */
+static int finish_powder_bed(parser *p, const scope *sc)
+{
+    amsph_geometry *g = sc->target;
+    const char *name = distribution_choices[g->distribution].name;
+    for (size_t k = 0; k < sizeof powder_keys / sizeof powder_keys[0]; k++) {
+        const int applies = (powder_keys[k].distributions & DISTRIBUTION_BIT(g->distribution)) != 0;
+        const yaml_node_t *given = found(sc, powder_keys[k].key);
+        if (given && !applies)
+            return fail(p, line_of(given), "'%s%s' does not apply to distribution '%s'", sc->prefix,
+                        powder_keys[k].key, name);
+        if (!given && applies && powder_keys[k].required)
+            return fail(p, line_of(sc->map), "missing required key '%s' in %s (distribution '%s')",
+                        powder_keys[k].key, sc->label, name);
+    }
+    double largest = g->grain_radius;
+    if (g->distribution == AMSPH_POWDER_LOGNORMAL) {
+        if (!(g->grain_radius_min <= g->grain_radius && g->grain_radius <= g->grain_radius_max &&
+              g->grain_radius_min < g->grain_radius_max))
+            return fail(p, line_of(found(sc, "grain_radius_max")),
+                        "'%sgrain_radius_min' (%g m), 'grain_radius' (%g m) and 'grain_radius_max' "
+                        "(%g m) must be in increasing order, min below max",
+                        sc->prefix, g->grain_radius_min, g->grain_radius, g->grain_radius_max);
+        largest = g->grain_radius_max;
+    }
+    if (g->distribution == AMSPH_POWDER_MIXED && !(g->small_radius < g->grain_radius))
+        return fail(p, line_of(found(sc, "small_radius")),
+                    "'%ssmall_radius' (%g m) must be < 'grain_radius' (%g m)", sc->prefix,
+                    g->small_radius, g->grain_radius);
+    if (check_corners(p, sc, g->min, g->max))
+        return CASE_ERROR;
+    for (int d = 0; d < p->c->dim; d++)
+        if (g->max[d] - g->min[d] < 2 * largest)
+            return fail(p, line_of(found(sc, "max")),
+                        "the powder bed's region is %g m across along %c, less than the diameter "
+                        "%g m of its largest grain",
+                        g->max[d] - g->min[d], "xyz"[d], 2 * largest);
+    return 0;
+}
+
 static int finish_geometry(parser *p, const scope *sc)
 {
     amsph_geometry *g = sc->target;
@@ -1608,6 +1714,8 @@ static int finish_geometry(parser *p, const scope *sc)
     }
     if (g->shape == AMSPH_SHAPE_CYLINDER)
         return normalise_vector(p, sc, "axis", g->axis);
+    if (g->shape == AMSPH_SHAPE_POWDER_BED)
+        return finish_powder_bed(p, sc);
     return 0;
 }
 

@@ -29,8 +29,16 @@ typedef enum {
     AMSPH_SHAPE_BOX = 0,
     AMSPH_SHAPE_CIRCLE = 1, /* 2D only */
     AMSPH_SHAPE_SPHERE = 2, /* 3D only */
-    AMSPH_SHAPE_CYLINDER = 3 /* 3D only */
+    AMSPH_SHAPE_CYLINDER = 3, /* 3D only */
+    AMSPH_SHAPE_POWDER_BED = 4 /* grains settled in a box (host/powder.h) */
 } amsph_shape;
+
+/* Grain radii of a powder bed (host/powder.h). */
+typedef enum {
+    AMSPH_POWDER_REGULAR = 0,   /* one radius, touching grains on a square array */
+    AMSPH_POWDER_LOGNORMAL = 1, /* truncated log-normal radii */
+    AMSPH_POWDER_MIXED = 2      /* two radii */
+} amsph_powder_distribution;
 
 typedef enum { AMSPH_BACKEND_OPENMP = 0, AMSPH_BACKEND_OPENCL = 1 } amsph_backend_kind;
 
@@ -96,7 +104,7 @@ typedef struct {
     amsph_shape shape;
     amsph_kind kind;
     int material;          /* index into amsph_case.materials */
-    double min[3], max[3]; /* box corners, m (unused components 0) */
+    double min[3], max[3]; /* box or powder-bed region corners, m (unused components 0) */
     double center[3];      /* circle/sphere centre; cylinder: centre of the base, m */
     double radius;         /* circle/sphere/cylinder radius, m */
     double axis[3];        /* cylinder axis, unit vector (normalised by the parser) */
@@ -108,6 +116,16 @@ typedef struct {
     double temperature;    /* initial temperature, K */
     int has_temperature;   /* 1 if `temperature` was given */
     int hydrostatic;       /* 1: initial density in hydrostatic balance (fluid module) */
+    /* powder bed only (host/powder.h) */
+    amsph_powder_distribution distribution; /* default regular */
+    double grain_radius;     /* regular: every grain; lognormal: exp(mean of ln r); mixed: the
+                                large grains, m */
+    double log_sd;           /* lognormal: standard deviation of ln r */
+    double grain_radius_min; /* lognormal: truncation of the radii, m */
+    double grain_radius_max;
+    double small_radius;     /* mixed: radius of the small grains, m */
+    double small_fraction;   /* mixed: number fraction of small grains, default 0.5 */
+    int seed;                /* lognormal, mixed: seed of the deposition, default 1 */
     int line;              /* line of the block in the case file, for messages */
 } amsph_geometry;
 
@@ -194,7 +212,7 @@ typedef struct {
     double radius;                 /* 1/e^2 radius r_l, m, > 0 */
     amsph_absorption absorption;   /* default volumetric */
     double absorption_coefficient; /* Beer-Lambert alpha, 1/m (volumetric) */
-    double absorptivity;           /* absorbed fraction zeta, in (0, 1], default 1 (surface) */
+    double absorptivity;           /* non-reflected fraction zeta, in (0, 1], default 1 */
     double direction[3];           /* unit vector; default -y (2D), -z (3D) */
     double start[3];               /* beam centre at t = 0, m */
     int n_path;                    /* segments followed after start */

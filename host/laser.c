@@ -124,8 +124,10 @@ int amsph_laser_setup(amsph_sim *s, amsph_host_particles *h)
 
 /* Beam state at time t: centre (wrapped into the domain on periodic axes,
  * so that every particle is less than a domain length from it), peak
- * irradiance 2P/(pi r_l^2) (Russell 2018 Eq. 3.42) and the depth of the
- * first bin node, the least depth of the domain's corners. */
+ * irradiance 2P/(pi r_l^2) (Russell 2018 Eq. 3.42; for the Beer-Lambert
+ * columns its non-reflected fraction zeta, the surface kernel applies zeta
+ * itself) and the depth of the first bin node, the least depth of the
+ * domain's corners. */
 static void aim_beam(amsph_sim *s, double t, double power)
 {
     const amsph_case *c = &s->config;
@@ -145,7 +147,8 @@ static void aim_beam(amsph_sim *s, double t, double power)
     for (int k = 0; k < 3; ++k)
         p->centre[k] = (amsph_real)centre[k];
     p->depth_lo = (amsph_real)depth_lo;
-    p->peak_intensity = (amsph_real)(2.0 * power / (PI * l->radius * l->radius));
+    const double entering = l->absorption == AMSPH_ABSORPTION_VOLUMETRIC ? l->absorptivity : 1.0;
+    p->peak_intensity = (amsph_real)(entering * 2.0 * power / (PI * l->radius * l->radius));
 }
 
 static amsph_arg field(amsph_sim *s, amsph_field_id f)

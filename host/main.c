@@ -17,6 +17,7 @@
 #include "checkpoint.h"
 #include "error.h"
 #include "output.h"
+#include "powder.h"
 #include "series.h"
 #include "sim.h"
 
@@ -302,6 +303,27 @@ static int prepare_run(const cli_options *o, amsph_case *c, amsph_checkpoint *ck
     return status ? failed(status) : 0;
 }
 
+/* One line per powder-bed block: its grains and packing fraction. */
+static int report_powder_beds(const amsph_case *c, FILE *f)
+{
+    for (int k = 0; k < c->n_geometry; ++k) {
+        const amsph_geometry *g = &c->geometry[k];
+        if (g->shape != AMSPH_SHAPE_POWDER_BED)
+            continue;
+        amsph_powder bed;
+        AMSPH_CHECK(amsph_powder_deposit(g, c->dim, &bed));
+        double smallest = INFINITY, largest = 0.0;
+        for (int i = 0; i < bed.n; ++i) {
+            smallest = fmin(smallest, bed.grain[i].radius);
+            largest = fmax(largest, bed.grain[i].radius);
+        }
+        fprintf(f, "amsph: %s:%d: powder bed of %d grains, radii %.4g to %.4g m, packing fraction %.4f\n",
+                c->path, g->line, bed.n, smallest, largest, amsph_powder_packing_fraction(&bed, g));
+        amsph_powder_free(&bed);
+    }
+    return 0;
+}
+
 static int command_run(const cli_options *o)
 {
     catch_stop_signals();
@@ -313,12 +335,15 @@ static int command_run(const cli_options *o)
         const char *backend = c.backend == AMSPH_BACKEND_OPENCL ? "opencl" : "openmp";
         status = open_backend(o->backend ? o->backend : backend, o->device >= 0 ? o->device : c.device, &b);
     }
+    if (!status && !o->quiet) {
+        fprintf(stderr, "amsph: %s on %s\n", c.path, b->description);
+        status = report_powder_beds(&c, stderr);
+    }
     if (status) {
         amsph_checkpoint_free(&ck);
+        amsph_backend_destroy(b);
         return status;
     }
-    if (!o->quiet)
-        fprintf(stderr, "amsph: %s on %s\n", c.path, b->description);
     amsph_sim sim;
     const amsph_run_options run = {.outdir = o->outdir,
                                    .quiet = o->quiet,
@@ -348,10 +373,12 @@ static int command_run(const cli_options *o)
 static int command_check(const cli_options *o)
 {
     amsph_case c;
-    const int status = load_case(o->case_path, &c);
-    if (!status)
+    int status = load_case(o->case_path, &c);
+    if (!status) {
         printf("%s: ok (dimension %d, %d materials, %d geometry blocks)\n", c.path, c.dim,
                c.n_materials, c.n_geometry);
+        status = report_powder_beds(&c, stdout);
+    }
     return status;
 }
 

@@ -6,6 +6,7 @@
 
 #include "error.h"
 #include "material.h"
+#include "powder.h"
 
 /* Lattice of spacing dx over [lo, hi) per axis, points at cell centres. */
 typedef struct {
@@ -42,9 +43,11 @@ static int inside_box(const double x[3], const double min[3], const double max[3
     return 1;
 }
 
-/* Does x belong to geometry block g? For a box with wall layers the block is
- * the shell outside the box, on the faces that are not open. */
-static int block_contains(const amsph_geometry *g, const double x[3], int dim)
+/* Does x belong to geometry block g (bed: its grains, for a powder bed)?
+ * For a box with wall layers the block is the shell outside the box, on
+ * the faces that are not open. */
+static int block_contains(const amsph_geometry *g, const amsph_powder *bed, const double x[3],
+                          int dim)
 {
     double r[3], r2 = 0.0;
     for (int d = 0; d < 3; ++d) {
@@ -61,17 +64,21 @@ static int block_contains(const amsph_geometry *g, const double x[3], int dim)
         const double along = r[0] * g->axis[0] + r[1] * g->axis[1] + r[2] * g->axis[2];
         return along >= 0.0 && along < g->length && r2 - along * along < g->radius * g->radius;
     }
+    case AMSPH_SHAPE_POWDER_BED:
+        return amsph_powder_contains(bed, x);
     }
     return 0;
 }
 
-/* The lattice that covers block g. Boxes are aligned to their corner, round
- * shapes to their centre, so a symmetric shape gets a symmetric lattice. */
+/* The lattice that covers block g. Boxes and powder beds are aligned to
+ * their corner (a bed on a box's lattice when its region starts on the
+ * box's face), round shapes to their centre, so a symmetric shape gets a
+ * symmetric lattice. */
 static lattice block_lattice(const amsph_geometry *g, int dim, double dx)
 {
     double lo[3] = {0}, hi[3] = {0};
     for (int d = 0; d < dim; ++d) {
-        if (g->shape == AMSPH_SHAPE_BOX) {
+        if (g->shape == AMSPH_SHAPE_BOX || g->shape == AMSPH_SHAPE_POWDER_BED) {
             const double pad = g->layers * dx;
             lo[d] = g->min[d] - (g->open_faces & AMSPH_FACE_BIT(d, 0) ? 0.0 : pad);
             hi[d] = g->max[d] + (g->open_faces & AMSPH_FACE_BIT(d, 1) ? 0.0 : pad);
@@ -126,8 +133,8 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
 
 /* Visits the lattice points of block g: counts them, or (h != NULL) checks
  * and stores them from particle index h->n - count onwards. */
-static int visit_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h,
-                       long long *count)
+static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
+                       amsph_host_particles *h, long long *count)
 {
     const lattice l = block_lattice(g, c->dim, c->dx);
     const long long points = (long long)l.count[0] * l.count[1] * l.count[2];
@@ -136,7 +143,7 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, amsph_host_
     for (long long k = 0; k < points; ++k) {
         double x[3];
         lattice_point(&l, k, x);
-        if (!block_contains(g, x, c->dim))
+        if (!block_contains(g, bed, x, c->dim))
             continue;
         if (h) {
             AMSPH_CHECK(check_inside_domain(c, g, x));
@@ -287,10 +294,11 @@ static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_par
     return 0;
 }
 
-static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h)
+static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
+                      amsph_host_particles *h)
 {
     long long count = 0;
-    AMSPH_CHECK(visit_block(c, g, NULL, &count));
+    AMSPH_CHECK(visit_block(c, g, bed, NULL, &count));
     if (count == 0)
         return amsph_fail("%s:%d: geometry block holds no particle at dx = %g m; make it larger "
                           "than dx",
@@ -298,7 +306,27 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
-    return visit_block(c, g, h, &count);
+    return visit_block(c, g, bed, h, &count);
+}
+
+/* Grains resolved by at least this many dx in radius. */
+#define GRAIN_RADIUS_MIN_DX 2.0
+
+static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h)
+{
+    if (g->shape != AMSPH_SHAPE_POWDER_BED)
+        return fill_block(c, g, NULL, h);
+    const double smallest = amsph_powder_smallest_radius(g);
+    if (smallest < GRAIN_RADIUS_MIN_DX * c->dx)
+        return amsph_fail("%s:%d: powder grains of radius %g m are not resolved at dx = %g m; "
+                          "make dx at most %g m (a radius of %g dx)",
+                          c->path, g->line, smallest, c->dx, smallest / GRAIN_RADIUS_MIN_DX,
+                          GRAIN_RADIUS_MIN_DX);
+    amsph_powder bed;
+    AMSPH_CHECK(amsph_powder_deposit(g, c->dim, &bed));
+    const int status = fill_block(c, g, &bed, h);
+    amsph_powder_free(&bed);
+    return status;
 }
 
 static int temperature_given(const amsph_case *c)

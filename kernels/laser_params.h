@@ -25,7 +25,8 @@ typedef struct {
     AMSPH_SHARED_REAL across[3];      /* e1, unit, normal to d */
     AMSPH_SHARED_REAL depth_lo;       /* q_d of the first node of every column, m */
     AMSPH_SHARED_REAL bin_size;       /* node spacing, m */
-    AMSPH_SHARED_REAL peak_intensity; /* 2 P / (pi r_l^2) at the current power, W/m^2 */
+    AMSPH_SHARED_REAL peak_intensity; /* 2 P / (pi r_l^2) at the current power (volumetric:
+                                         times the absorptivity zeta), W/m^2 */
     AMSPH_SHARED_REAL radius;         /* 1/e^2 radius r_l, m */
     AMSPH_SHARED_REAL absorption;     /* volumetric: alpha, 1/m; surface: zeta */
     AMSPH_SHARED_REAL surface_delta;  /* surface: delta = this |grad Gamma| (flat_face_delta) */

@@ -315,6 +315,44 @@ static const bad_case bad_cases[] = {
      HEAD2 MATS GEO_START "    shape: box\n    min: [0, 0]\n"
                           "    max: [-0.5, 0.5]\n",
      NAME ":16: 'geometry[0].max[0]' (-0.5) must be > 'geometry[0].min[0]' (0)"},
+#define BED GEO_START "    shape: powder_bed\n    min: [0, 0]\n    max: [1, 0.2]\n"
+    {"powder bed without grain radius", HEAD2 MATS BED,
+     NAME ":12: missing required key 'grain_radius' in geometry[0] (shape 'powder_bed')"},
+    {"powder bed log-normal without log_sd",
+     HEAD2 MATS BED "    distribution: lognormal\n    grain_radius: 0.05\n"
+                    "    grain_radius_min: 0.04\n    grain_radius_max: 0.06\n",
+     NAME ":12: missing required key 'log_sd' in geometry[0] (distribution 'lognormal')"},
+    {"powder bed log_sd on a regular bed", HEAD2 MATS BED "    grain_radius: 0.05\n    log_sd: 0.2\n",
+     NAME ":18: 'geometry[0].log_sd' does not apply to distribution 'regular'"},
+    {"powder bed seed on a regular bed", HEAD2 MATS BED "    grain_radius: 0.05\n    seed: 3\n",
+     NAME ":18: 'geometry[0].seed' does not apply to distribution 'regular'"},
+    {"powder bed small_radius on a log-normal bed",
+     HEAD2 MATS BED "    distribution: lognormal\n    grain_radius: 0.05\n    log_sd: 0.2\n"
+                    "    grain_radius_min: 0.04\n    grain_radius_max: 0.06\n    small_radius: 0.01\n",
+     NAME ":22: 'geometry[0].small_radius' does not apply to distribution 'lognormal'"},
+    {"powder bed log-normal radii out of order",
+     HEAD2 MATS BED "    distribution: lognormal\n    grain_radius: 0.05\n    log_sd: 0.2\n"
+                    "    grain_radius_min: 0.06\n    grain_radius_max: 0.08\n",
+     NAME ":21: 'geometry[0].grain_radius_min' (0.06 m), 'grain_radius' (0.05 m) and "
+          "'grain_radius_max' (0.08 m) must be in increasing order, min below max"},
+    {"powder bed mixed without small radius",
+     HEAD2 MATS BED "    distribution: mixed\n    grain_radius: 0.05\n",
+     NAME ":12: missing required key 'small_radius' in geometry[0] (distribution 'mixed')"},
+    {"powder bed mixed small radius not smaller",
+     HEAD2 MATS BED "    distribution: mixed\n    grain_radius: 0.05\n    small_radius: 0.05\n",
+     NAME ":19: 'geometry[0].small_radius' (0.05 m) must be < 'grain_radius' (0.05 m)"},
+    {"powder bed small fraction above 1",
+     HEAD2 MATS BED "    distribution: mixed\n    grain_radius: 0.05\n    small_radius: 0.02\n"
+                    "    small_fraction: 1.5\n",
+     NAME ":20: 'geometry[0].small_fraction' must be in [0, 1], got 1.5"},
+    {"powder bed region thinner than a grain", HEAD2 MATS BED "    grain_radius: 0.15\n",
+     NAME ":16: the powder bed's region is 0.2 m across along y, less than the diameter 0.3 m of its "
+          "largest grain"},
+    {"powder bed distribution unknown", HEAD2 MATS BED "    grain_radius: 0.05\n    distribution: gaussian\n",
+     NAME ":18: 'geometry[0].distribution' must be one of regular, lognormal, mixed; got 'gaussian'"},
+    {"grain radius on a box", BASE2 "    grain_radius: 0.05\n",
+     NAME ":17: 'geometry[0].grain_radius' does not apply to shape 'box'"},
+#undef BED
     {"cylinder axis zero",
      HEAD3 MATS GEO_START "    shape: cylinder\n    center: [0, 0, 0]\n"
                           "    axis: [0, 0, 0]\n    radius: 0.1\n    length: 0.2\n",
@@ -334,9 +372,9 @@ static const bad_case bad_cases[] = {
     {"laser coefficient for surface",
      BASE2 "laser: {power: 1, radius: 1, absorption: surface, absorption_coefficient: 5, start: [0, 0]}\n",
      NAME ":17: 'laser.absorption_coefficient' does not apply to absorption 'surface'"},
-    {"laser absorptivity for volumetric (default)",
-     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 5, absorptivity: 0.5, start: [0, 0]}\n",
-     NAME ":17: 'laser.absorptivity' does not apply to absorption 'volumetric'"},
+    {"laser absorptivity above 1, volumetric (default)",
+     BASE2 "laser: {power: 1, radius: 1, absorption_coefficient: 5, absorptivity: 1.5, start: [0, 0]}\n",
+     NAME ":17: 'laser.absorptivity' must be in (0, 1], got 1.5"},
     {"laser absorptivity above 1",
      BASE2 "laser: {power: 1, radius: 1, absorption: surface, absorptivity: 1.5, start: [0, 0]}\n",
      NAME ":17: 'laser.absorptivity' must be in (0, 1], got 1.5"},
@@ -431,7 +469,7 @@ static const bad_case bad_cases[] = {
     {"kind gas", HEAD2 MATS "geometry:\n  - shape: box\n    kind: gas\n",
      NAME ":13: 'geometry[0].kind' must be one of fluid, wall, solid; got 'gas'"},
     {"shape is a list", HEAD2 MATS GEO_START "    shape: [box]\n",
-     NAME ":14: 'geometry[0].shape' must be one of box, circle, sphere, cylinder; got a list"},
+     NAME ":14: 'geometry[0].shape' must be one of box, circle, sphere, cylinder, powder_bed; got a list"},
     {"sphere in 2D", HEAD2 MATS GEO_START "    shape: sphere\n",
      NAME ":14: 'geometry[0].shape': 'sphere' exists only in 3D, but dimension is 2"},
     {"circle in 3D", HEAD3 MATS GEO_START "    shape: circle\n",

@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Russell's track metrics (2018 Table 5.3) from the snapshots of a run.
+
+    tools/track_metrics.py OUTDIR [--time 0.26e-3] [--surface 0] [--solidus 1673] [--liquidus 1773]
+
+At the snapshot nearest --time (Russell: 0.26 ms, mid-lasering):
+  penetration  the deepest initial position, below the substrate's initial
+               surface (y or z = --surface), of a substrate particle whose
+               peak temperature has reached the solidus (and the liquidus),
+               in um: particle centres, followed by id from the first snapshot;
+  max T        the largest temperature at that time, K;
+  max speed    the largest particle speed at that time, m/s;
+both over the bed (particles with at least 3 others within 1.5 dx) and over
+lone particles thrown off it (spatter), and the number of particles more
+than half liquid.
+"""
+import argparse
+import glob
+import os
+
+import h5py
+import numpy as np
+
+
+def snapshot(path):
+    with h5py.File(path, "r") as f:
+        return {name: f[name][()] for name in f} | {"time": float(f.attrs["time"]),
+                                                     "dim": int(f.attrs["dim"]), "dx": float(f.attrs["dx"])}
+
+
+def neighbour_counts(position, reach):
+    """Other particles within `reach` of each particle (brute force, in blocks)."""
+    counts = np.empty(len(position), dtype=int)
+    for start in range(0, len(position), 1024):
+        block = position[start:start + 1024]
+        d2 = ((block[:, None, :] - position[None, :, :]) ** 2).sum(axis=2)
+        counts[start:start + 1024] = (d2 < reach * reach).sum(axis=1) - 1
+    return counts
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("outdir")
+    parser.add_argument("--time", type=float, default=0.26e-3)
+    parser.add_argument("--surface", type=float, default=0.0)
+    parser.add_argument("--solidus", type=float, default=1673.0)
+    parser.add_argument("--liquidus", type=float, default=1773.0)
+    args = parser.parse_args()
+    paths = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
+    if not paths:
+        raise SystemExit(f"no snapshots in {args.outdir}")
+    first = snapshot(paths[0])
+    times = []
+    for path in paths:
+        with h5py.File(path, "r") as f:
+            times.append(float(f.attrs["time"]))
+    now = snapshot(paths[int(np.argmin(np.abs(np.array(times) - args.time)))])
+    up = first["dim"] - 1
+    initial = np.full(int(first["id"].max()) + 1, np.nan)
+    initial[first["id"]] = first["position"][:, up]
+    depth = args.surface - initial[now["id"]]  # initial depth below the surface, m
+    fixed = now["kind"] != 1  # not wall
+    peak = now["peak_temperature"]
+
+    def penetration(threshold):
+        melted = fixed & (depth > 0) & (peak >= threshold)
+        return 1e6 * depth[melted].max() if melted.any() else 0.0
+
+    speed = np.linalg.norm(now["velocity"], axis=1)
+    bed = neighbour_counts(now["position"], 1.5 * now["dx"]) >= 3
+
+    def largest(values, where):
+        return values[where].max() if where.any() else float("nan")
+
+    print(f"t = {now['time'] * 1e3:.4f} ms ({os.path.basename(paths[times.index(now['time'])])}): "
+          f"penetration {penetration(args.solidus):.1f} um (solidus), {penetration(args.liquidus):.1f} um "
+          f"(liquidus); bed: max T {largest(now['temperature'], bed):.0f} K, max speed "
+          f"{largest(speed, bed):.2f} m/s; {int((~bed).sum())} spatter particles: max T "
+          f"{largest(now['temperature'], ~bed):.0f} K, max speed {largest(speed, ~bed):.2f} m/s; "
+          f"{int((now['liquid_fraction'] > 0.5).sum())} particles over half liquid")
+
+
+if __name__ == "__main__":
+    main()
