@@ -150,11 +150,11 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         laser_cell_near(&g, x, cc);
         const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, 1, sqrt(reach2))
+        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x, cell_start, 1, sqrt(reach2))
         {
-            real r[3];
+            real r[3]; /* r_b - x, the image of b next to the node */
             for (int d = 0; d < 3; ++d)
-                r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
+                r[d] = (position[3 * b + d] - x[d]) + run.image[d];
             if (dot3(r, r) < reach2) {
                 real offset[AMSPH_DIM];
                 for (int k = 0; k < AMSPH_DIM; ++k)
@@ -268,11 +268,13 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         real grad[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        const real support2 = SUPPORT_OVER_H * SUPPORT_OVER_H * h * h;
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        const real support = SUPPORT_OVER_H * h, support2 = support * support;
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
+            grid_displacement(x_a, position, b, &run, r_ab);
             const real r2 = dot3(r_ab, r_ab);
             if (r2 < support2) {
                 const real f = smoothing_grad_factor(sqrt(r2), h) * mass[b] / density[b];

@@ -1,21 +1,12 @@
-/* The sorted grid as seen by a kernel: cell coordinates, the minimum-image
- * displacement for periodic axes, and the loop over the 3^d cells around a
- * particle. Particles are sorted by cell; cell_start[c] .. cell_start[c+1]
- * are the particles of cell c. */
+/* The sorted grid as seen by a kernel: cell coordinates, and the loop over
+ * the particles of the cells around a point that come within a radius of
+ * it. Particles are sorted by cell, cells numbered x fastest:
+ * cell_start[c] .. cell_start[c+1] are the particles of cell c, and the
+ * cells of a row along x are one contiguous range of particles. */
 #ifndef AMSPH_NEIGHBOURS_H
 #define AMSPH_NEIGHBOURS_H
 
 #include "device.h"
-
-/* Cells around a particle's cell within `reach` cells along each axis:
- * (2 reach + 1)^d. Pair loops of the kernel support reach 1 cell (cells are
- * at least the support radius wide); wider supports, such as the surface
- * terms' (kernels/surface.cl), reach further. */
-#if AMSPH_DIM == 2
-#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1))
-#else
-#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1) * (2 * (reach) + 1))
-#endif
 
 /* Cell coordinates of cell index c (x fastest). */
 static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
@@ -23,38 +14,6 @@ static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
     cc[0] = c % g->ncell[0];
     cc[1] = (c / g->ncell[0]) % g->ncell[1];
     cc[2] = c / (g->ncell[0] * g->ncell[1]);
-}
-
-/* Index of the cell at offset o from cell cc, wrapped on periodic axes; -1
- * outside a closed axis. */
-static inline int grid_cell_at(const grid_geometry *g, const int cc[3], int ox, int oy, int oz)
-{
-    const int o[3] = {ox, oy, oz};
-    int index = 0, stride = 1;
-    for (int d = 0; d < AMSPH_DIM; ++d) {
-        int c = cc[d] + o[d];
-        if (c < 0 || c >= g->ncell[d]) {
-            if (!g->periodic[d])
-                return -1;
-            c = c < 0 ? c + g->ncell[d] : c - g->ncell[d];
-        }
-        index += c * stride;
-        stride *= g->ncell[d];
-    }
-    return index;
-}
-
-/* Index of the k-th of the cells within `reach` of cc (k = 0 ..
- * NEIGHBOUR_CELLS(reach) - 1, x fastest), wrapped on periodic axes (which
- * must have at least 2 reach + 1 cells); -1 where it falls outside a closed
- * axis. */
-static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k, int reach)
-{
-    const int span = 2 * reach + 1;
-    int o[3] = {0, 0, 0};
-    for (int d = 0; d < AMSPH_DIM; ++d, k /= span)
-        o[d] = k % span - reach;
-    return grid_cell_at(g, cc, o[0], o[1], o[2]);
 }
 
 /* A displacement r along axis d, replaced by its nearest periodic image on a
@@ -71,83 +30,165 @@ static inline real grid_nearest_image(const grid_geometry *g, int d, real r)
     return r;
 }
 
-/* r_ab = r_a - r_b, the nearest periodic image on periodic axes. */
-static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *position, int a,
-                                     int b, real r_ab[3])
-{
-    for (int d = 0; d < 3; ++d)
-        r_ab[d] = grid_nearest_image(g, d, position[3 * a + d] - position[3 * b + d]);
-}
-
-/* Loop b over every particle in the cells within `reach` of cell
- * coordinates cc (particle a itself included: callers skip b == a where it
- * matters).
- *   FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, reach) { ... } */
-#define FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, reach)                                     \
-    for (int nb_k_ = 0; nb_k_ < NEIGHBOUR_CELLS(reach); ++nb_k_)                                   \
-        for (int nb_c_ = grid_neighbour_cell((g), (cc), nb_k_, (reach)),                           \
-                 b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                          \
-                 nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                                \
-             b < nb_end_; ++b)
-
-/* r_ab = r_a - r_b (nearest image) and r2 = |r_ab|^2; 1 when r2 < radius2. */
-static inline int grid_pair_within(const grid_geometry *g, GLOBAL const real *position, int a, int b, real radius2,
-                                   real r_ab[3], real *r2)
-{
-    grid_displacement(g, position, a, b, r_ab);
-    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
-    return *r2 < radius2;
-}
-
-/* The position of particle a as a private point (for FOR_EACH_NEIGHBOUR_NEAR). */
+/* The position of particle a as a private point (the centre of a neighbour loop). */
 static inline void grid_point(GLOBAL const real *position, int a, real x[3])
 {
     for (int d = 0; d < 3; ++d)
         x[d] = position[3 * a + d];
 }
 
-/* Offsets, along each axis, of the cells within `reach` of cell cc that
- * come within `radius` of the point x: the whole -reach .. reach along a
- * periodic axis (its last cell is wider than cell_size), 0 .. 0 along the
- * axes past the dimension. */
+/* Positions and cell faces are rounded to about 1e-6 cell sizes: a cell is
+ * passed over only when it lies this many cell sizes beyond the radius, so
+ * that no particle within the radius is lost to rounding. */
+#define GRID_SPAN_SLACK REAL(1e-4)
+
+/* The widest reach of a neighbour loop, in cells. */
+#define GRID_MAX_REACH 4
+#define GRID_SPAN_WIDTH (2 * GRID_MAX_REACH + 1)
+
+/* The cells within `reach` of cell cc around the point x, per axis d and
+ * offset o (index o + GRID_MAX_REACH): the squared distance from x to the
+ * cells at that offset (in cell sizes), and along y and z the offset's
+ * wrapped cell coordinate times its stride in the cell index (-1 beyond a
+ * closed axis) and its periodic image (the domain length where the offset
+ * wraps below the axis's start, minus it above its end). lo .. hi are the
+ * offsets that come within the radius; along the axes past the dimension
+ * 0 .. 0. Along a periodic axis, whose last cell is wider than cell_size,
+ * no cell is passed over (its distances are 0). */
 typedef struct {
     int lo[3], hi[3];
+    real gap2[3][GRID_SPAN_WIDTH];
+    int row_cell[3][GRID_SPAN_WIDTH];
+    real image[3][GRID_SPAN_WIDTH];
+    real extent2; /* (radius / cell_size)^2, with the slack */
+    int cx;       /* cc's x coordinate */
 } grid_span;
 
 static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
                                        real radius)
 {
     grid_span s;
-    for (int d = 0; d < 3; ++d) {
-        s.lo[d] = d < AMSPH_DIM ? -reach : 0;
-        s.hi[d] = d < AMSPH_DIM ? reach : 0;
-        if (d >= AMSPH_DIM || g->periodic[d])
-            continue;
+    const real extent = radius / g->cell_size + GRID_SPAN_SLACK;
+    s.extent2 = extent * extent;
+    s.cx = cc[0];
+    for (int d = 0, stride = 1; d < 3; stride *= g->ncell[d], ++d) {
+        const int r = d < AMSPH_DIM ? reach : 0;
+        const int trimmed = d < AMSPH_DIM && !g->periodic[d];
         /* cell o spans [o, o + 1) cell sizes from cell cc's lower face */
-        const real offset = (x[d] - g->lo[d]) / g->cell_size - (real)cc[d], extent = radius / g->cell_size;
-        while (s.lo[d] < 0 && (real)(s.lo[d] + 1) <= offset - extent)
+        const real offset = trimmed ? (x[d] - g->lo[d]) / g->cell_size - (real)cc[d] : REAL(0.0);
+        s.lo[d] = -r;
+        s.hi[d] = r;
+        for (int o = -r; o <= r; ++o) {
+            const real gap = !trimmed || o == 0 ? REAL(0.0) : o < 0 ? offset - (real)(o + 1) : (real)o - offset;
+            const int k = o + GRID_MAX_REACH;
+            s.gap2[d][k] = gap > REAL(0.0) ? gap * gap : REAL(0.0);
+            int c = cc[d] + o;
+            s.image[d][k] = c < 0 ? -g->length[d] : c >= g->ncell[d] ? g->length[d] : REAL(0.0);
+            if (c < 0 || c >= g->ncell[d])
+                c = g->periodic[d] ? (c < 0 ? c + g->ncell[d] : c - g->ncell[d]) : -1;
+            s.row_cell[d][k] = c < 0 ? -1 : c * stride;
+        }
+        while (s.lo[d] < 0 && s.gap2[d][s.lo[d] + GRID_MAX_REACH] >= s.extent2)
             ++s.lo[d];
-        while (s.hi[d] > 0 && (real)s.hi[d] >= offset + extent)
+        while (s.hi[d] > 0 && s.gap2[d][s.hi[d] + GRID_MAX_REACH] >= s.extent2)
             --s.hi[d];
     }
     return s;
 }
 
-/* Loop b over the particles of the cells within `reach` of cell cc that
- * come within `radius` of the point x (a private real[3]; grid_point):
- * with a support of 1.5 cells (reach 2), about 45 of the 125 cells in 3D.
- *   FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, reach, radius) { ... } */
-#define FOR_EACH_NEIGHBOUR_NEAR(b, g, cc, x, cell_start, reach, radius)                            \
+/* A run of a neighbour loop: the particles first .. end - 1 of consecutive
+ * cells along x in one row of the span, and the periodic image of the run:
+ * the image of each of its particles b next to the point is r_b + image
+ * (image[d] = 0, or -/+ the domain length where the row wraps around a
+ * periodic axis d). A row comes in up to three parts along x: the cells
+ * wrapped from the axis's upper end (part -1), the cells within the axis
+ * (0) and those wrapped from its lower end (+1). */
+typedef struct {
+    int first, end;
+    real image[3];
+    int part, last_part; /* the part of the row this run holds, and the row's last */
+    int row_cell;        /* index of the row's cell at x = 0, -1 beyond a closed axis */
+    int x_lo, x_hi;      /* the row's cells along x, unwrapped (x_lo > x_hi: none) */
+} grid_run;
+
+/* Part `part` of the row: its cells are the row's cells u = x_lo .. x_hi
+ * with part * ncell <= u < (part + 1) * ncell, at u - part * ncell. */
+static inline void grid_run_part(const grid_geometry *g, GLOBAL const int *cell_start, grid_run *run,
+                                 int part)
+{
+    const int n = g->ncell[0];
+    const int u_lo = run->x_lo > part * n ? run->x_lo : part * n;
+    const int u_hi = run->x_hi < part * n + n - 1 ? run->x_hi : part * n + n - 1;
+    run->part = part;
+    run->image[0] = (real)part * g->length[0];
+    run->first = run->end = 0;
+    if (u_lo <= u_hi && run->row_cell >= 0) {
+        run->first = cell_start[run->row_cell + u_lo - part * n];
+        run->end = cell_start[run->row_cell + u_hi - part * n + 1];
+    }
+}
+
+/* The first run of the span's row (oy, oz): its cells along x trimmed to
+ * those within the radius of the point (gap_x^2 + gap_y^2 + gap_z^2 <
+ * extent^2), none where the row lies beyond the radius or beyond a closed
+ * axis's end. */
+static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
+                                int oy, int oz)
+{
+    grid_run run;
+    const int ky = oy + GRID_MAX_REACH, kz = oz + GRID_MAX_REACH;
+    const int cy = s->row_cell[1][ky], cz = s->row_cell[2][kz];
+    run.row_cell = cy < 0 || cz < 0 ? -1 : cy + cz;
+    run.image[1] = s->image[1][ky];
+    run.image[2] = s->image[2][kz];
+    const real room = s->extent2 - s->gap2[1][ky] - s->gap2[2][kz];
+    run.x_lo = s->lo[0];
+    run.x_hi = s->hi[0];
+    while (run.x_lo <= run.x_hi && s->gap2[0][run.x_lo + GRID_MAX_REACH] >= room)
+        ++run.x_lo;
+    while (run.x_lo <= run.x_hi && s->gap2[0][run.x_hi + GRID_MAX_REACH] >= room)
+        --run.x_hi;
+    run.x_lo += s->cx;
+    run.x_hi += s->cx;
+    run.last_part = g->periodic[0] ? 1 : 0;
+    grid_run_part(g, cell_start, &run, -run.last_part);
+    return run;
+}
+
+/* Loop b over the particles of the cells within `reach` (<= GRID_MAX_REACH)
+ * of cell cc that come within `radius` of the point x (a private real[3];
+ * grid_point), one run (grid_run, named `run`) of contiguous particles per
+ * row of cells and periodic image: with cells of the kernel support, 3D,
+ * 4.9 candidates per particle within the support (6.4 in the 27 cells).
+ *   FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x, cell_start, reach, radius) { ... } */
+#define FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, reach, radius)                       \
     for (grid_span nb_s_ = grid_near_span((g), (x), (cc), (reach), (radius));                      \
          nb_s_.lo[2] <= nb_s_.hi[2]; ++nb_s_.lo[2])                                                \
         for (int nb_y_ = nb_s_.lo[1]; nb_y_ <= nb_s_.hi[1]; ++nb_y_)                               \
-            for (int nb_x_ = nb_s_.lo[0]; nb_x_ <= nb_s_.hi[0]; ++nb_x_)                           \
-                for (int nb_c_ = grid_cell_at((g), (cc), nb_x_, nb_y_, nb_s_.lo[2]),               \
-                         b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                  \
-                         nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                        \
-                     b < nb_end_; ++b)
+            for (grid_run run = grid_row((g), (cell_start), &nb_s_, nb_y_, nb_s_.lo[2]);           \
+                 run.part <= run.last_part; grid_run_part((g), (cell_start), &run, run.part + 1))   \
+                for (int b = run.first; b < run.end; ++b)
 
-/* The 3^d cells of the kernel support. */
-#define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start) FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, 1)
+/* The neighbour loop of the kernel support: the cells around the particle
+ * reach 1 cell (cells are at least the support wide). */
+#define FOR_EACH_NEIGHBOUR(b, run, g, cc, x, cell_start, radius)                                   \
+    FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, 1, radius)
+
+/* r_ab = r_a - r_b for the point x_a = r_a and the image of b in run. */
+static inline void grid_displacement(const real x_a[3], GLOBAL const real *position, int b,
+                                     const grid_run *run, real r_ab[3])
+{
+    for (int d = 0; d < 3; ++d)
+        r_ab[d] = (x_a[d] - position[3 * b + d]) - run->image[d];
+}
+
+/* r_ab (grid_displacement) and r2 = |r_ab|^2; 1 when r2 < radius2. */
+static inline int grid_pair_within(const real x_a[3], GLOBAL const real *position, int b,
+                                   const grid_run *run, real radius2, real r_ab[3], real *r2)
+{
+    grid_displacement(x_a, position, b, run, r_ab);
+    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
+    return *r2 < radius2;
+}
 
 #endif
