@@ -27,7 +27,7 @@ KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
         FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, SUPPORT_OVER_H * h)
         {
             real r_ab[3];
-            grid_displacement(x_a, position, b, &run, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r = sqrt(r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2]);
             const real v_b = mass[b] / density[b];
             const real w = smoothing_w(r, h);
@@ -64,7 +64,7 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
         FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, radius)
         {
             real r_ab[3];
-            grid_displacement(x_a, position, b, &run, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
             if (b != a && r2 < radius * radius) {
                 if (found < max_neighbours)

@@ -71,7 +71,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             {
                 if (kind[b] == KIND_FLUID) {
                     real r_ab[3];
-                    grid_displacement(x_a, position, b, &run, r_ab);
+                    grid_displacement(&run, position, b, r_ab);
                     const real r2 = dot3(r_ab, r_ab);
                     if (r2 >= support * support)
                         continue; /* W = 0 */
@@ -193,7 +193,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(x_a, position, b, &run, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = dot3(r_ab, r_ab);
             if (r2 >= support * support)
                 continue; /* W = 0: most candidates (4 in 5 in 3D, 3 in 5 in 2D) */
@@ -263,7 +263,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3];
-                grid_displacement(x_a, position, b, &run, r_ab);
+                grid_displacement(&run, position, b, r_ab);
                 const real r2 = dot3(r_ab, r_ab);
                 if (b == a || r2 >= support * support)
                     continue;

@@ -122,9 +122,9 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
  * bin"): node n gathers, over the particles p around it,
  *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
  * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
- * the host keeps within one cell size: the 2^d of the 3^d cells around that
- * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR_NEAR);
- * the others in those cells are passed over by their distance. */
+ * the host keeps within the kernel support: the cells around the node that
+ * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR); the
+ * others in those cells are passed over by their distance. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, grid_geometry g,
                                  GLOBAL const int *cell_start, laser_params p, int nodes,
@@ -150,11 +150,11 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         laser_cell_near(&g, x, cc);
         const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x, cell_start, 1, sqrt(reach2))
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x, cell_start, sqrt(reach2))
         {
-            real r[3]; /* r_b - x, the image of b next to the node */
+            real r[3]; /* r_b - x for the image of b next to the node */
             for (int d = 0; d < 3; ++d)
-                r[d] = (position[3 * b + d] - x[d]) + run.image[d];
+                r[d] = position[3 * b + d] - run.point[d];
             if (dot3(r, r) < reach2) {
                 real offset[AMSPH_DIM];
                 for (int k = 0; k < AMSPH_DIM; ++k)
@@ -274,7 +274,7 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(x_a, position, b, &run, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = dot3(r_ab, r_ab);
             if (r2 < support2) {
                 const real f = smoothing_grad_factor(sqrt(r2), h) * mass[b] / density[b];

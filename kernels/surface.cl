@@ -93,7 +93,7 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (grid_pair_within(x_a, position, b, &run, support2, r_ab, &r2))
+            if (grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
         }
         shepard[a] = sum;
@@ -137,7 +137,7 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (!grid_pair_within(x_a, position, b, &run, support2, r_ab, &r2))
+            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
             const real v_b = mass[b] / density[b];
@@ -187,7 +187,7 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
                 if (normal_weight[b] <= REAL(0.0))
                     continue;
                 real r_ab[3], r2;
-                if (!grid_pair_within(x_a, position, b, &run, support2, r_ab, &r2))
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
                 const real v_b = normal_weight[b] * mass[b] / density[b];
@@ -237,7 +237,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (!grid_pair_within(x_a, position, b, &run, support2, r_ab, &r2))
+            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];

@@ -78,7 +78,7 @@ KERNEL void wall_temperature(GLOBAL const real *position, GLOBAL const real *tem
             {
                 if (kind[b] != KIND_WALL) {
                     real r_ab[3];
-                    grid_displacement(x_a, position, b, &run, r_ab);
+                    grid_displacement(&run, position, b, r_ab);
                     const real w = smoothing_w(sqrt(thermal_dot3(r_ab, r_ab)), p.h);
                     sum_w += w;
                     sum_t += w * temperature[b];
@@ -245,7 +245,7 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(x_a, position, b, &run, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = thermal_dot3(r_ab, r_ab);
             if (b != a && r2 < support * support) {
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
