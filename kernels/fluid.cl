@@ -196,7 +196,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
             grid_displacement(&run, position, b, r_ab);
             const real r2 = dot3(r_ab, r_ab);
             if (r2 >= support * support)
-                continue; /* W = 0: most candidates (4 in 5 in 3D, 3 in 5 in 2D) */
+                continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
             const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];
             shepard += smoothing_w(r, p.h) * v_b;
