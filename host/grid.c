@@ -14,7 +14,8 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
 {
     grid_geometry *geo = &g->geometry;
     memset(geo, 0, sizeof *geo);
-    geo->cell_size = (amsph_real)support;
+    const double cell_size = support / GRID_CELLS_PER_SUPPORT;
+    geo->cell_size = (amsph_real)cell_size;
     geo->total_cells = 1;
     for (int d = 0; d < 3; ++d) {
         geo->ncell[d] = 1;
@@ -24,9 +25,9 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
         geo->lo[d] = (amsph_real)lo[d];
         geo->length[d] = (amsph_real)length;
         geo->periodic[d] = periodic[d];
-        const double cells = length / support;
+        const double cells = length / cell_size;
         if (periodic[d]) {
-            if (cells < 3.0)
+            if (length < 3.0 * support)
                 return amsph_fail("periodic axis %c: the domain length %g m is shorter than 3 "
                                   "kernel supports (%g m); enlarge the domain or refine dx",
                                   axis_name[d], length, 3.0 * support);

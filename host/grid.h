@@ -24,8 +24,9 @@ typedef struct {
     amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];
 } amsph_grid;
 
-/* Lays cells of side >= support over [lo, hi]; a periodic axis needs at
- * least 3 cells. */
+/* Lays cells of side support / GRID_CELLS_PER_SUPPORT (a periodic axis's
+ * last cell takes the remainder) over [lo, hi]; a periodic axis needs at
+ * least 3 supports. */
 int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
                     const double hi[3], const int periodic[3], double support, int capacity);
 /* Bins and sorts the particles, reorders every present field, and drops the

@@ -22,8 +22,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     p->normal_cutoff = (amsph_real)st->normal_cutoff;
     p->max_curvature = (amsph_real)(0.5 / h_st);
     p->min_shepard = (amsph_real)st->min_shepard;
-    /* cells are s->support wide; the surface support needs this many */
-    p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support - 1e-9);
+    /* cells are s->support / GRID_CELLS_PER_SUPPORT wide; the surface support needs this many */
+    p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support * GRID_CELLS_PER_SUPPORT - 1e-9);
     p->tension = st->tension;
     p->marangoni = st->marangoni;
     for (int m = 0; m < s->config.n_materials; ++m) {

@@ -22,10 +22,12 @@ KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
         real m0 = REAL(0.0);
         real m1[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real m2[9] = {REAL(0.0)};
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, SUPPORT_OVER_H * h)
         {
             real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r = sqrt(r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2]);
             const real v_b = mass[b] / density[b];
             const real w = smoothing_w(r, h);
@@ -57,10 +59,12 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         int found = 0;
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, radius)
         {
             real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
             if (b != a && r2 < radius * radius) {
                 if (found < max_neighbours)

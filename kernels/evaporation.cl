@@ -36,12 +36,14 @@ KERNEL void recoil_force(GLOBAL const real *position, GLOBAL const real *density
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
-            const real support2 = SUPPORT_OVER_H * SUPPORT_OVER_H * p.h * p.h;
+            const real support = SUPPORT_OVER_H * p.h, support2 = support * support;
             real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-            FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+            real x_a[3];
+            grid_point(position, a, x_a);
+            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3];
-                grid_displacement(&g, position, a, b, r_ab);
+                grid_displacement(&run, position, b, r_ab);
                 const real r2 = dot3(r_ab, r_ab);
                 if (b != a && r2 < support2) {
                     const real f = smoothing_grad_factor(sqrt(r2), p.h) * mass[b] / density[b];

@@ -118,28 +118,14 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
     }
 }
 
-/* Half-extents, along each grid axis, of the box that holds the PIC
- * stencil of a node: the cube |offset_k| < 1 of the beam frame (bin units)
- * projects onto grid axis d as bin_size sum_k |axis[k][d]|, which is
- * bin_size along the beam's own axes when it is aligned with the grid and
- * at most bin_size sqrt(d) (the cube's circumscribed ball) when it is not. */
-static inline void laser_stencil_extent(const laser_params *p, real axis[AMSPH_DIM][3], real extent[3])
-{
-    for (int d = 0; d < 3; ++d) {
-        extent[d] = REAL(0.0);
-        for (int k = 0; k < AMSPH_DIM; ++k)
-            extent[d] += fabs(axis[k][d]) * p->bin_size;
-    }
-}
-
 /* Step 1 (Russell 2018 §3.2.2, "sum all particle contributions to a given
  * bin"): node n gathers, over the particles p around it,
  *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
- * A particle with w_pn > 0 lies in the node's stencil box
- * (laser_stencil_extent), at most bin_size sqrt(d) from the node, which the
- * host keeps within one cell size: the cells around the node's that the box
- * touches hold them all (2 per axis, mostly), and the others in those cells
- * are passed over by their weight. */
+ * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
+ * the host keeps within the kernel support: the cells around the node that
+ * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR); the
+ * others in those cells are passed over by their offsets, before the
+ * weight is formed. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
                                  GLOBAL const real *density, grid_geometry g,
                                  GLOBAL const int *cell_start, laser_params p, int nodes,
@@ -163,14 +149,13 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
         }
         int cc[3];
         laser_cell_near(&g, x, cc);
-        real extent[3];
-        laser_stencil_extent(&p, axis, extent);
+        const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
         real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_IN_SPAN(b, &g, cc, grid_box_span(&g, x, cc, 1, extent), cell_start)
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x, cell_start, sqrt(reach2))
         {
-            real r[3], offset[AMSPH_DIM];
+            real r[3], offset[AMSPH_DIM]; /* r_b - x for the image of b next to the node */
             for (int d = 0; d < 3; ++d)
-                r[d] = grid_nearest_image(&g, d, position[3 * b + d] - x[d]);
+                r[d] = position[3 * b + d] - run.point[d];
             int in_stencil = 1;
             for (int k = 0; k < AMSPH_DIM; ++k) {
                 offset[k] = dot3(r, axis[k]) / p.bin_size;
@@ -286,11 +271,13 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         real grad[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        const real support2 = SUPPORT_OVER_H * SUPPORT_OVER_H * h * h;
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        const real support = SUPPORT_OVER_H * h, support2 = support * support;
+        real x_a[3];
+        grid_point(position, a, x_a);
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = dot3(r_ab, r_ab);
             if (r2 < support2) {
                 const real f = smoothing_grad_factor(sqrt(r2), h) * mass[b] / density[b];

@@ -1,21 +1,12 @@
-/* The sorted grid as seen by a kernel: cell coordinates, the minimum-image
- * displacement for periodic axes, and the loop over the 3^d cells around a
- * particle. Particles are sorted by cell; cell_start[c] .. cell_start[c+1]
- * are the particles of cell c. */
+/* The sorted grid as seen by a kernel: cell coordinates, and the loop over
+ * the particles of the cells around a point that come within a radius of
+ * it. Particles are sorted by cell, cells numbered x fastest:
+ * cell_start[c] .. cell_start[c+1] are the particles of cell c, and the
+ * cells of a row along x are one contiguous range of particles. */
 #ifndef AMSPH_NEIGHBOURS_H
 #define AMSPH_NEIGHBOURS_H
 
 #include "device.h"
-
-/* Cells around a particle's cell within `reach` cells along each axis:
- * (2 reach + 1)^d. Pair loops of the kernel support reach 1 cell (cells are
- * at least the support radius wide); wider supports, such as the surface
- * terms' (kernels/surface.cl), reach further. */
-#if AMSPH_DIM == 2
-#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1))
-#else
-#define NEIGHBOUR_CELLS(reach) ((2 * (reach) + 1) * (2 * (reach) + 1) * (2 * (reach) + 1))
-#endif
 
 /* Cell coordinates of cell index c (x fastest). */
 static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
@@ -23,38 +14,6 @@ static inline void grid_cell_coords(const grid_geometry *g, int c, int cc[3])
     cc[0] = c % g->ncell[0];
     cc[1] = (c / g->ncell[0]) % g->ncell[1];
     cc[2] = c / (g->ncell[0] * g->ncell[1]);
-}
-
-/* Index of the cell at offset o from cell cc, wrapped on periodic axes; -1
- * outside a closed axis. */
-static inline int grid_cell_at(const grid_geometry *g, const int cc[3], int ox, int oy, int oz)
-{
-    const int o[3] = {ox, oy, oz};
-    int index = 0, stride = 1;
-    for (int d = 0; d < AMSPH_DIM; ++d) {
-        int c = cc[d] + o[d];
-        if (c < 0 || c >= g->ncell[d]) {
-            if (!g->periodic[d])
-                return -1;
-            c = c < 0 ? c + g->ncell[d] : c - g->ncell[d];
-        }
-        index += c * stride;
-        stride *= g->ncell[d];
-    }
-    return index;
-}
-
-/* Index of the k-th of the cells within `reach` of cc (k = 0 ..
- * NEIGHBOUR_CELLS(reach) - 1, x fastest), wrapped on periodic axes (which
- * must have at least 2 reach + 1 cells); -1 where it falls outside a closed
- * axis. */
-static inline int grid_neighbour_cell(const grid_geometry *g, const int cc[3], int k, int reach)
-{
-    const int span = 2 * reach + 1;
-    int o[3] = {0, 0, 0};
-    for (int d = 0; d < AMSPH_DIM; ++d, k /= span)
-        o[d] = k % span - reach;
-    return grid_cell_at(g, cc, o[0], o[1], o[2]);
 }
 
 /* A displacement r along axis d, replaced by its nearest periodic image on a
@@ -71,96 +30,202 @@ static inline real grid_nearest_image(const grid_geometry *g, int d, real r)
     return r;
 }
 
-/* r_ab = r_a - r_b, the nearest periodic image on periodic axes. */
-static inline void grid_displacement(const grid_geometry *g, GLOBAL const real *position, int a,
-                                     int b, real r_ab[3])
-{
-    for (int d = 0; d < 3; ++d)
-        r_ab[d] = grid_nearest_image(g, d, position[3 * a + d] - position[3 * b + d]);
-}
-
-/* Loop b over every particle in the cells within `reach` of cell
- * coordinates cc (particle a itself included: callers skip b == a where it
- * matters).
- *   FOR_EACH_NEIGHBOUR_WITHIN(b, &g, cc, cell_start, reach) { ... } */
-#define FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, reach)                                     \
-    for (int nb_k_ = 0; nb_k_ < NEIGHBOUR_CELLS(reach); ++nb_k_)                                   \
-        for (int nb_c_ = grid_neighbour_cell((g), (cc), nb_k_, (reach)),                           \
-                 b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                          \
-                 nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                                \
-             b < nb_end_; ++b)
-
-/* r_ab = r_a - r_b (nearest image) and r2 = |r_ab|^2; 1 when r2 < radius2. */
-static inline int grid_pair_within(const grid_geometry *g, GLOBAL const real *position, int a, int b, real radius2,
-                                   real r_ab[3], real *r2)
-{
-    grid_displacement(g, position, a, b, r_ab);
-    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
-    return *r2 < radius2;
-}
-
-/* The position of particle a as a private point (for FOR_EACH_NEIGHBOUR_NEAR). */
+/* The position of particle a as a private point (the centre of a neighbour loop). */
 static inline void grid_point(GLOBAL const real *position, int a, real x[3])
 {
     for (int d = 0; d < 3; ++d)
         x[d] = position[3 * a + d];
 }
 
-/* Offsets, along each axis, of the cells within `reach` of cell cc that
- * come within extent[d] of the point x along axis d: the whole -reach ..
- * reach along a periodic axis (its last cell is wider than cell_size), 0 .. 0
- * along the axes past the dimension. */
+/* Positions and cell faces are rounded to about 1e-6 cell sizes: a cell is
+ * passed over only when it lies this many cell sizes beyond the radius, so
+ * that no particle within the radius is lost to rounding. */
+#define GRID_SPAN_SLACK REAL(1e-4)
+
+/* The widest reach of a neighbour loop, in cells: the surface terms' support
+ * is at most 4 kernel supports (surface.h_over_dx <= 4 h_over_dx, host/case.c). */
+#define GRID_MAX_REACH (4 * GRID_CELLS_PER_SUPPORT)
+#define GRID_SPAN_WIDTH (2 * GRID_MAX_REACH + 1)
+
+/* The cells within `reach` of cell cc that come within the radius of the
+ * point x. Per axis, the squared distances from x to the m-th cell below
+ * and above cc (cell sizes, m = 0 .. reach - 1; GRID_BEYOND past a closed
+ * axis's end and along the axes past the dimension); along a periodic axis,
+ * whose last cell is wider than cell_size, no cell is passed over (its
+ * distances are 0). Per offset o along y and z (index o + GRID_MAX_REACH):
+ * the squared distance from x to the cells at o, their coordinate wrapped
+ * around a periodic axis times its stride in the cell index, and the
+ * point's coordinate as the particles there see it: x less the periodic
+ * image (a particle's image next to x is r_b + image, image the domain
+ * length where o wraps below the axis's start, minus it above its end). */
 typedef struct {
-    int lo[3], hi[3];
+    int reach;
+    real below2[3][GRID_MAX_REACH], above2[3][GRID_MAX_REACH];
+    real gap2[2][GRID_SPAN_WIDTH];
+    int row_cell[2][GRID_SPAN_WIDTH];
+    real point[2][GRID_SPAN_WIDTH];
+    real extent2; /* (radius / cell_size + the slack)^2 */
+    int lo_z, hi_z; /* the offsets along z within the radius */
+    int cx;         /* cc's x coordinate */
+    real x;         /* the point's x */
 } grid_span;
 
-static inline grid_span grid_box_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
-                                      const real extent[3])
+#define GRID_BEYOND REAL(1e30)
+
+/* The number of cells on one side of cc along an axis, given the squared
+ * distances to them (increasing), that come closer than sqrt(room). */
+static inline int grid_cells_within(const real gap2[GRID_MAX_REACH], int reach, real room)
 {
-    grid_span s;
-    for (int d = 0; d < 3; ++d) {
-        s.lo[d] = d < AMSPH_DIM ? -reach : 0;
-        s.hi[d] = d < AMSPH_DIM ? reach : 0;
-        if (d >= AMSPH_DIM || g->periodic[d])
-            continue;
+    int cells = 0;
+    for (int m = 0; m < reach; ++m)
+        cells += gap2[m] < room;
+    return cells;
+}
+
+static inline grid_span *grid_near_span(grid_span *s, const grid_geometry *g, const real x[3], const int cc[3],
+                                        int reach, real radius)
+{
+    const real extent = radius / g->cell_size + GRID_SPAN_SLACK;
+    s->extent2 = extent * extent;
+    s->reach = reach;
+    s->cx = cc[0];
+    s->x = x[0];
+    for (int d = 0, stride = 1; d < 3; stride *= g->ncell[d], ++d) {
+        const int trimmed = d < AMSPH_DIM && !g->periodic[d];
         /* cell o spans [o, o + 1) cell sizes from cell cc's lower face */
-        const real offset = (x[d] - g->lo[d]) / g->cell_size - (real)cc[d], cells = extent[d] / g->cell_size;
-        while (s.lo[d] < 0 && (real)(s.lo[d] + 1) <= offset - cells)
-            ++s.lo[d];
-        while (s.hi[d] > 0 && (real)s.hi[d] >= offset + cells)
-            --s.hi[d];
+        const real offset = trimmed ? (x[d] - g->lo[d]) / g->cell_size - (real)cc[d] : REAL(0.0);
+        for (int m = 0; m < reach; ++m) {
+            const real below = offset + (real)m, above = REAL(1.0) - offset + (real)m;
+            s->below2[d][m] = !trimmed ? REAL(0.0) : below > REAL(0.0) ? below * below : REAL(0.0);
+            s->above2[d][m] = !trimmed ? REAL(0.0) : above > REAL(0.0) ? above * above : REAL(0.0);
+            if (d >= AMSPH_DIM || (trimmed && cc[d] - m - 1 < 0))
+                s->below2[d][m] = GRID_BEYOND;
+            if (d >= AMSPH_DIM || (trimmed && cc[d] + m + 1 >= g->ncell[d]))
+                s->above2[d][m] = GRID_BEYOND;
+        }
+        const int lo = -grid_cells_within(s->below2[d], reach, s->extent2);
+        const int hi = grid_cells_within(s->above2[d], reach, s->extent2);
+        for (int o = lo; d > 0 && o <= hi; ++o) {
+            const int k = o + GRID_MAX_REACH, c = cc[d] + o;
+            s->gap2[d - 1][k] = o < 0 ? s->below2[d][-o - 1] : o > 0 ? s->above2[d][o - 1] : REAL(0.0);
+            s->point[d - 1][k] = x[d] - (c < 0 ? -g->length[d] : c >= g->ncell[d] ? g->length[d] : REAL(0.0));
+            s->row_cell[d - 1][k] = (c < 0 ? c + g->ncell[d] : c >= g->ncell[d] ? c - g->ncell[d] : c) * stride;
+        }
+        s->lo_z = lo;
+        s->hi_z = hi;
     }
     return s;
 }
 
-/* The span of the cells that come within `radius` of x (a ball). */
-static inline grid_span grid_near_span(const grid_geometry *g, const real x[3], const int cc[3], int reach,
-                                       real radius)
+/* The room left along x and y in the slab of cells at offset oz along z:
+ * extent^2 less the slab's squared distance. */
+static inline real grid_slab_room(const grid_span *s, int oz)
 {
-    const real extent[3] = {radius, radius, radius};
-    return grid_box_span(g, x, cc, reach, extent);
+    return s->extent2 - s->gap2[1][oz + GRID_MAX_REACH];
 }
 
-/* Loop b over the particles of the cells of span s around cell cc (a
- * grid_span, consumed by the loop):
- *   FOR_EACH_NEIGHBOUR_IN_SPAN(b, &g, cc, s, cell_start) { ... } */
-#define FOR_EACH_NEIGHBOUR_IN_SPAN(b, g, cc, s, cell_start)                                        \
-    for (grid_span nb_s_ = (s); nb_s_.lo[2] <= nb_s_.hi[2]; ++nb_s_.lo[2])                          \
-        for (int nb_y_ = nb_s_.lo[1]; nb_y_ <= nb_s_.hi[1]; ++nb_y_)                               \
-            for (int nb_x_ = nb_s_.lo[0]; nb_x_ <= nb_s_.hi[0]; ++nb_x_)                           \
-                for (int nb_c_ = grid_cell_at((g), (cc), nb_x_, nb_y_, nb_s_.lo[2]),               \
-                         b = nb_c_ < 0 ? 0 : (cell_start)[nb_c_],                                  \
-                         nb_end_ = nb_c_ < 0 ? 0 : (cell_start)[nb_c_ + 1];                        \
-                     b < nb_end_; ++b)
+/* A run of a neighbour loop: the particles first .. end - 1 of consecutive
+ * cells along x in one row of the span, and the point as they see it: the
+ * point less the periodic image of the run (grid_span), so that r_ab =
+ * point - r_b for the point as r_a. On a periodic x axis a row comes in
+ * three parts: the cells wrapped from the axis's upper end (part -1), the
+ * cells within the axis (0) and those wrapped from its lower end (+1), each
+ * possibly empty. */
+typedef struct {
+    int first, end;
+    real point[3];
+    int part, last_part; /* the part of the row this run holds, and the row's last */
+    int row_cell;        /* index of the row's cell at x = 0 */
+    int x_lo, x_hi;      /* the row's cells along x, unwrapped */
+} grid_run;
 
-/* Loop b over the particles of the cells within `reach` of cell cc that
- * come within `radius` of the point x (a private real[3]; grid_point):
- * with a support of 1.5 cells (reach 2), about 45 of the 125 cells in 3D.
- *   FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x, cell_start, reach, radius) { ... } */
-#define FOR_EACH_NEIGHBOUR_NEAR(b, g, cc, x, cell_start, reach, radius)                            \
-    FOR_EACH_NEIGHBOUR_IN_SPAN(b, g, cc, grid_near_span((g), (x), (cc), (reach), (radius)), cell_start)
+/* Part `part` of a row on a periodic x axis: the row's cells u = x_lo .. x_hi
+ * with part * ncell <= u < (part + 1) * ncell, at u - part * ncell. */
+static inline void grid_run_part(const grid_geometry *g, GLOBAL const int *cell_start, real x, grid_run *run,
+                                 int part)
+{
+    const int n = g->ncell[0];
+    const int u_lo = run->x_lo > part * n ? run->x_lo : part * n;
+    const int u_hi = run->x_hi < part * n + n - 1 ? run->x_hi : part * n + n - 1;
+    run->part = part;
+    run->point[0] = x - (real)part * g->length[0];
+    run->first = u_lo <= u_hi ? cell_start[run->row_cell + u_lo - part * n] : 0;
+    run->end = u_lo <= u_hi ? cell_start[run->row_cell + u_hi - part * n + 1] : 0;
+}
 
-/* The 3^d cells of the kernel support. */
-#define FOR_EACH_NEIGHBOUR(b, g, cc, cell_start) FOR_EACH_NEIGHBOUR_WITHIN(b, g, cc, cell_start, 1)
+/* The first run of the span's row (oy, oz), whose y offset is within the
+ * radius in its slab (room > its squared distance): its cells along x
+ * trimmed to those within the radius of the point (gap_x^2 + gap_y^2 +
+ * gap_z^2 < extent^2). */
+static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
+                                real slab_room, int oy, int oz)
+{
+    grid_run run;
+    const int ky = oy + GRID_MAX_REACH, kz = oz + GRID_MAX_REACH;
+    const real room = slab_room - s->gap2[0][ky];
+    run.row_cell = s->row_cell[0][ky] + s->row_cell[1][kz];
+    run.point[0] = s->x;
+    run.point[1] = s->point[0][ky];
+    run.point[2] = s->point[1][kz];
+    run.x_lo = s->cx - grid_cells_within(s->below2[0], s->reach, room);
+    run.x_hi = s->cx + grid_cells_within(s->above2[0], s->reach, room);
+    run.part = run.last_part = 0;
+    if (g->periodic[0]) {
+        run.last_part = 1;
+        grid_run_part(g, cell_start, s->x, &run, -1);
+    } else {
+        run.first = cell_start[run.row_cell + run.x_lo];
+        run.end = cell_start[run.row_cell + run.x_hi + 1];
+    }
+    return run;
+}
+
+/* The next run of the row, if any (run->part > run->last_part: none). */
+static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
+                                 grid_run *run)
+{
+    if (++run->part <= run->last_part)
+        grid_run_part(g, cell_start, s->x, run, run->part);
+}
+
+/* Loop b over the particles of the cells within `reach` (<= GRID_MAX_REACH)
+ * of cell cc that come within `radius` of the point x (a private real[3];
+ * grid_point), one run (grid_run, named `run`) of contiguous particles per
+ * row of cells and periodic image, the rows and their cells trimmed to the
+ * sphere: with cells of half the kernel support, 3D, 2.5 candidates per
+ * particle within the support.
+ *   FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x, cell_start, reach, radius) { ... } */
+#define FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, reach, radius)                       \
+    for (grid_span nb_s_, *nb_once_ = grid_near_span(&nb_s_, (g), (x), (cc), (reach), (radius));   \
+         nb_once_; nb_once_ = 0)                                                                   \
+        for (int nb_z_ = nb_s_.lo_z; nb_z_ <= nb_s_.hi_z; ++nb_z_)                                 \
+            for (real nb_room_ = grid_slab_room(&nb_s_, nb_z_), *nb_slab_ = &nb_room_; nb_slab_;    \
+                 nb_slab_ = 0)                                                                     \
+                for (int nb_y_ = -grid_cells_within(nb_s_.below2[1], (reach), nb_room_),      \
+                         nb_y_hi_ = grid_cells_within(nb_s_.above2[1], (reach), nb_room_);     \
+                     nb_y_ <= nb_y_hi_; ++nb_y_)                                                   \
+                    for (grid_run run = grid_row((g), (cell_start), &nb_s_, nb_room_, nb_y_, nb_z_); \
+                         run.part <= run.last_part; grid_run_next((g), (cell_start), &nb_s_, &run)) \
+                        for (int b = run.first; b < run.end; ++b)
+
+/* The neighbour loop of a radius up to the kernel support. */
+#define FOR_EACH_NEIGHBOUR(b, run, g, cc, x, cell_start, radius)                                   \
+    FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius)
+
+/* r_ab = r_a - r_b for the loop's point as r_a and the image of b next to it. */
+static inline void grid_displacement(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])
+{
+    for (int d = 0; d < 3; ++d)
+        r_ab[d] = run->point[d] - position[3 * b + d];
+}
+
+/* r_ab (grid_displacement) and r2 = |r_ab|^2; 1 when r2 < radius2. */
+static inline int grid_pair_within(const grid_run *run, GLOBAL const real *position, int b, real radius2,
+                                   real r_ab[3], real *r2)
+{
+    grid_displacement(run, position, b, r_ab);
+    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
+    return *r2 < radius2;
+}
 
 #endif

@@ -90,10 +90,10 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         real x_a[3];
         grid_point(position, a, x_a);
         real sum = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
+        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
+            if (grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
         }
         shepard[a] = sum;
@@ -134,10 +134,10 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         const real support2 = surface_support2(&p), support = sqrt(support2);
         real x_a[3];
         grid_point(position, a, x_a);
-        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
+        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
+            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
             const real v_b = mass[b] / density[b];
@@ -182,12 +182,12 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
             real x_a[3];
             grid_point(position, a, x_a);
             real gamma_star = REAL(0.0), divergence = REAL(0.0);
-            FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 if (normal_weight[b] <= REAL(0.0))
                     continue;
                 real r_ab[3], r2;
-                if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
                 const real v_b = normal_weight[b] * mass[b] / density[b];
@@ -234,10 +234,10 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         const real support2 = surface_support2(&p), support = sqrt(support2);
         real x_a[3];
         grid_point(position, a, x_a);
-        FOR_EACH_NEIGHBOUR_NEAR(b, &g, cc, x_a, cell_start, p.reach, support)
+        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (!grid_pair_within(&g, position, a, b, support2, r_ab, &r2))
+            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];

@@ -72,12 +72,14 @@ KERNEL void wall_temperature(GLOBAL const real *position, GLOBAL const real *tem
         if (kind[a] == KIND_WALL) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
+            real x_a[3];
+            grid_point(position, a, x_a);
             real sum_w = REAL(0.0), sum_t = REAL(0.0);
-            FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, SUPPORT_OVER_H * p.h)
             {
                 if (kind[b] != KIND_WALL) {
                     real r_ab[3];
-                    grid_displacement(&g, position, a, b, r_ab);
+                    grid_displacement(&run, position, b, r_ab);
                     const real w = smoothing_w(sqrt(thermal_dot3(r_ab, r_ab)), p.h);
                     sum_w += w;
                     sum_t += w * temperature[b];
@@ -239,12 +241,15 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         real conduction = REAL(0.0);
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_u[3][3] = {{REAL(0.0)}}, moment[3][3] = {{REAL(0.0)}};
-        FOR_EACH_NEIGHBOUR(b, &g, cc, cell_start)
+        real x_a[3];
+        grid_point(position, a, x_a);
+        const real support = SUPPORT_OVER_H * p.h;
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
         {
             real r_ab[3];
-            grid_displacement(&g, position, a, b, r_ab);
+            grid_displacement(&run, position, b, r_ab);
             const real r2 = thermal_dot3(r_ab, r_ab);
-            if (b != a && r2 < SUPPORT_OVER_H * SUPPORT_OVER_H * p.h * p.h) {
+            if (b != a && r2 < support * support) {
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
                 const real v_b = mass[b] / density[b];
                 conduction += conduction_pair(k_a, conductivity[b], t_a, ghost_temperature[b], v_b, f * r2, r2, &p);
