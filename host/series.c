@@ -119,6 +119,7 @@ static double evaporated_particles(const amsph_series_sample *x)
 {
     return thermal_value(x, (double)x->sim->evaporated_particles);
 }
+static double departed_energy(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.departed); }
 static double wall_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.walls); }
 static double viscous_heat(const amsph_series_sample *x) { return thermal_value(x, x->sim->ledger.viscous); }
 static double thermal_iterations(const amsph_series_sample *x)
@@ -163,12 +164,15 @@ const amsph_series_column amsph_series_columns[] = {
      evaporated_particles},
     {"evaporated_energy", "J", "Enthalpy m h of the particles removed above thermal.evaporation_temperature",
      evaporated_energy},
+    {"departed_energy", "J", "Enthalpy m h of the particles that left the domain since the start",
+     departed_energy},
     {"wall_heat", "J", "Heat given to the material by the Dirichlet walls since the start (negative: taken)",
      wall_heat},
     {"viscous_heat", "J", "Viscous dissipation turned into heat since the start", viscous_heat},
     {"ledger_error", "1",
-     "Energy ledger: abs(enthalpy change - (laser - radiated - evaporation_heat - evaporated_energy + wall + "
-     "viscous)) over the larger of the change and the sum of the six terms' magnitudes",
+     "Energy ledger: abs(enthalpy change - (laser - radiated - evaporation_heat - evaporated_energy - "
+     "departed_energy + wall + viscous)) over the larger of the change and the sum of the seven terms' "
+     "magnitudes",
      ledger_error},
     {"thermal_iterations", "1",
      "Fixed-point iterations of the last enthalpy update (1 explicit; 0 before the first step)",

@@ -386,6 +386,8 @@ int amsph_sim_step(amsph_sim *s, double dt)
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
+    if (s->config.thermal.enabled)
+        AMSPH_CHECK(amsph_thermal_book_departures(s));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
     AMSPH_CHECK(update_temperature(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));

@@ -34,13 +34,14 @@ enum {
 
 /* Time integrals of the heat exchanged by the material (fluid and solid),
  * J (J/m in 2D): enthalpy now - initial
- *   = laser - radiation - evaporation - evaporated + walls + viscous. */
+ *   = laser - radiation - evaporation - evaporated - departed + walls + viscous. */
 typedef struct {
     double initial;     /* sum of m h at the start */
     double laser;       /* absorbed laser energy */
     double radiation;   /* radiated from free surfaces */
     double evaporation; /* carried off by the vapour of free surfaces (Fuchs Eq. 18) */
     double evaporated;  /* m h of the particles removed above thermal.evaporation_temperature */
+    double departed;    /* m h of the particles that left the domain */
     double walls;     /* given by the Dirichlet walls (negative: taken) */
     double viscous;   /* viscous dissipation turned into heat */
 } amsph_energy_ledger;
@@ -119,6 +120,7 @@ typedef struct {
     X(ledger.radiation)                                                                            \
     X(ledger.evaporation)                                                                          \
     X(ledger.evaporated)                                                                           \
+    X(ledger.departed)                                                                             \
     X(evaporated_particles)                                                                        \
     X(ledger.walls)                                                                                \
     X(ledger.viscous)

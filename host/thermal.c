@@ -417,6 +417,20 @@ void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit)
     }
 }
 
+int amsph_thermal_book_departures(amsph_sim *s)
+{
+    const int n = s->particles.n;
+    double leaving = 0.0;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "departing_enthalpy", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MASS),
+                             field(s, AMSPH_FIELD_ENTHALPY), amsph_arg_int(n),
+                             amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                             amsph_arg_buffer(s->work)));
+    AMSPH_CHECK(amsph_reduce_sum(s->backend, s->work, n, &leaving));
+    s->ledger.departed += leaving;
+    return 0;
+}
+
 int amsph_thermal_energy(amsph_sim *s, double *energy)
 {
     const int n = s->particles.n;
@@ -429,9 +443,10 @@ int amsph_thermal_energy(amsph_sim *s, double *energy)
 double amsph_energy_ledger_error(const amsph_energy_ledger *l, double energy)
 {
     const double change = energy - l->initial;
-    const double booked = l->laser - l->radiation - l->evaporation - l->evaporated + l->walls + l->viscous;
+    const double booked =
+        l->laser - l->radiation - l->evaporation - l->evaporated - l->departed + l->walls + l->viscous;
     const double gross = fabs(l->laser) + fabs(l->radiation) + fabs(l->evaporation) + fabs(l->evaporated) +
-                         fabs(l->walls) + fabs(l->viscous);
+                         fabs(l->departed) + fabs(l->walls) + fabs(l->viscous);
     const double scale = fmax(gross, fabs(change));
     return scale > 0.0 ? fabs(change - booked) / scale : 0.0;
 }

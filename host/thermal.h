@@ -31,6 +31,9 @@ int amsph_thermal_advance(amsph_sim *s, double dt);
 void amsph_thermal_dt(const amsph_sim *s, double *dt, const char **limit);
 /* Sum of m h over fluid and solid particles, J (per metre in 2D). */
 int amsph_thermal_energy(amsph_sim *s, double *energy);
+/* Books in the ledger the enthalpy of the particles outside the domain,
+ * which the next sort drops (after the drift, before the sort). */
+int amsph_thermal_book_departures(amsph_sim *s);
 /* |energy change - booked exchanges| over the gross exchange (0 when
  * nothing was exchanged and nothing changed), with the material's enthalpy
  * now `energy` (amsph_thermal_energy). */

@@ -8,6 +8,7 @@
  * left the domain (or whose position is not finite): they sort to the end and
  * the host drops them. */
 #include "device.h"
+#include "kinds.h"
 #include "neighbours.h"
 
 KERNEL void fill_words(GLOBAL uint *buffer, int n, uint value)
@@ -28,6 +29,21 @@ static inline int grid_axis_cell(const grid_geometry *g, int d, real x)
         return -1;
     const int c = (int)s;
     return c < g->ncell[d] ? c : g->ncell[d] - 1;
+}
+
+/* m h of the fluid and solid particles outside the domain along a closed
+ * axis, which the next sort drops, and 0 for the others: the enthalpy that
+ * leaves the domain with them, for the thermal module's energy ledger. */
+KERNEL void departing_enthalpy(GLOBAL const real *position, GLOBAL const int *kind, GLOBAL const real *mass,
+                               GLOBAL const real *enthalpy, int n, grid_geometry g, GLOBAL real *out)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        int outside = 0;
+        for (int d = 0; d < AMSPH_DIM; ++d)
+            outside |= !g.periodic[d] && grid_axis_cell(&g, d, position[3 * i + d]) < 0;
+        out[i] = outside && kind[i] != KIND_WALL ? mass[i] * enthalpy[i] : REAL(0.0);
+    }
 }
 
 KERNEL void grid_bin(GLOBAL real *position, int n, grid_geometry g, GLOBAL int *cell,

@@ -268,6 +268,45 @@ static void test_removal(void)
     }
 }
 
+/* Particles that leave the domain take their enthalpy out of the ledger
+ * (departed_energy): a block at 1000 K drifting at 1 m/s (no fluid module:
+ * ballistic) through the closed +x face loses ten columns of ten particles
+ * in 15 steps of one spacing; the departed enthalpy is their m h and the
+ * ledger closes. */
+static void test_departure(void)
+{
+    const char *text = "dimension: 2\n"
+                       "domain: {min: [0, 0], max: [1, 0.4]}\n"
+                       "dx: 0.02\nend_time: 1\noutput_interval: 1\n"
+                       "thermal: {}\n"
+                       "materials: [" MATERIAL "]\n"
+                       "geometry:\n"
+                       "  - {shape: box, kind: fluid, material: m, min: [0.5, 0.1], max: [0.9, 0.3], velocity: [1, 0],\n"
+                       "     temperature: 1000}\n";
+    amsph_case c;
+    if (parse(text, &c))
+        return;
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        if (!b)
+            continue;
+        amsph_sim s;
+        double ledger = INFINITY;
+        CHECK_OK(amsph_sim_create(&c, b, &s));
+        for (int step = 0; step < 15; ++step)
+            CHECK_OK(amsph_sim_step(&s, DX));
+        CHECK_OK(amsph_thermal_ledger_error(&s, &ledger));
+        const double exact = (double)s.particles.removed * DENSITY * DX * DX * HEAT * 1000.0;
+        fprintf(stderr, "departure (%s): %lld left the domain with %.6g J/m (m h each: %.6g); ledger error %.2e\n",
+                k ? "opencl" : "openmp", s.particles.removed, s.ledger.departed, exact, ledger);
+        CHECK(s.particles.removed == 100, "%lld particles left the domain, not 100", s.particles.removed);
+        CHECK(fabs(s.ledger.departed / exact - 1.0) < 1e-5 && ledger < 1e-5,
+              "departed enthalpy %.7g J/m, their m h %.7g; ledger error %.3g", s.ledger.departed, exact, ledger);
+        amsph_sim_free(&s);
+        amsph_backend_destroy(b);
+    }
+}
+
 /* Runs the case (its end time `end` when > 0) and returns the peak
  * temperature; the sim is left for the caller to read and free. */
 static double run(amsph_case *c, double end, amsph_backend *b, amsph_sim *s)
@@ -356,6 +395,7 @@ int main(void)
     test_recoil();
     test_cooling();
     test_removal();
+    test_departure();
     test_boiling_slab();
     test_recoil_pool();
     return testing_finish();
