@@ -5,6 +5,7 @@
  *   evaporate_hot    the simpler option: particles above a cut-off
  *                    temperature leave (the damage parameter Russell 2018
  *                    proposes at the opening of ch. 3) */
+#include "colour.h"
 #include "device.h"
 #include "kinds.h"
 #include "neighbours.h"
@@ -34,23 +35,8 @@ KERNEL void recoil_force(GLOBAL const real *position, GLOBAL const real *density
     FOR_EACH_ITEM(a, n)
     {
         if (kind[a] == KIND_FLUID) {
-            int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real support = SUPPORT_OVER_H * p.h, support2 = support * support;
-            real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-            real x_a[3];
-            grid_point(position, a, x_a);
-            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-            {
-                real r_ab[3];
-                grid_displacement(&run, position, b, r_ab);
-                const real r2 = dot3(r_ab, r_ab);
-                if (b != a && r2 < support2) {
-                    const real f = smoothing_grad_factor(sqrt(r2), p.h) * mass[b] / density[b];
-                    for (int d = 0; d < 3; ++d)
-                        grad_gamma[d] += f * r_ab[d];
-                }
-            }
+            real grad_gamma[3];
+            colour_gradient(position, mass, density, &g, cell_start, cell[a], a, p.h, grad_gamma);
             const real size = sqrt(dot3(grad_gamma, grad_gamma));
             const real delta = surface_delta(size, &p);
             if (delta > REAL(0.0)) {

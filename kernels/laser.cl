@@ -11,6 +11,7 @@
  *   laser_gather_power     each particle gathers the power of its 2^d nodes.
  * Surface (Fuchs et al. 2022 Eq. 17): laser_surface_absorb, one pass.
  * The beam frame and bin grid are described in laser_params.h. */
+#include "colour.h"
 #include "device.h"
 #include "laser_params.h"
 #include "neighbours.h"
@@ -268,23 +269,8 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
 {
     FOR_EACH_ITEM(a, n)
     {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        real grad[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        const real support = SUPPORT_OVER_H * h, support2 = support * support;
-        real x_a[3];
-        grid_point(position, a, x_a);
-        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-        {
-            real r_ab[3];
-            grid_displacement(&run, position, b, r_ab);
-            const real r2 = dot3(r_ab, r_ab);
-            if (r2 < support2) {
-                const real f = smoothing_grad_factor(sqrt(r2), h) * mass[b] / density[b];
-                for (int d = 0; d < 3; ++d)
-                    grad[d] += f * r_ab[d];
-            }
-        }
+        real grad[3];
+        colour_gradient(position, mass, density, &g, cell_start, cell[a], a, h, grad);
         real axis[AMSPH_DIM][3];
         laser_frame(&p, axis);
         real q[AMSPH_DIM];
