@@ -156,6 +156,39 @@ static amsph_arg field(amsph_sim *s, amsph_field_id f)
     return amsph_arg_buffer(s->particles.field[f]);
 }
 
+/* The extreme of sign q_d over the particles under the bin columns
+ * (kernels/laser.cl laser_depth_extent). */
+static int depth_extreme(amsph_sim *s, double sign, double *extreme)
+{
+    const int n = s->particles.n;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "laser_depth_extent", n, field(s, AMSPH_FIELD_POSITION), amsph_arg_int(n),
+                             amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                             amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(sign),
+                             amsph_arg_buffer(s->work)));
+    return amsph_reduce_max(s->backend, s->work, n, extreme);
+}
+
+/* The bin grid of this pass: the nodes of the whole grid (aim_beam) from
+ * one above the shallowest particle under the columns to one below the
+ * deepest, the same lattice, so the result is the whole grid's (rounding
+ * aside) at a fraction of its nodes. */
+static int pass_grid(amsph_sim *s, laser_params *pass)
+{
+    *pass = s->laser.params;
+    double deepest, minus_shallowest;
+    AMSPH_CHECK(depth_extreme(s, 1.0, &deepest));
+    AMSPH_CHECK(depth_extreme(s, -1.0, &minus_shallowest));
+    int first = 0, last = 0; /* no particle under the columns: one layer above the domain */
+    if (deepest > -1e29) {
+        const double lo = pass->depth_lo, size = pass->bin_size;
+        first = (int)fmax(0.0, floor((-minus_shallowest - lo) / size) - 1.0);
+        last = (int)fmin(pass->depth_nodes - 1.0, ceil((deepest - lo) / size) + 1.0);
+    }
+    pass->depth_lo = (amsph_real)(pass->depth_lo + first * (double)pass->bin_size);
+    pass->depth_nodes = last - first + 1;
+    return 0;
+}
+
 /* Russell 2018 §3.2.2: volumes onto the bins, Beer-Lambert down the
  * columns, power back to the particles (kernels/laser.cl). */
 static int absorb_volumetric(amsph_sim *s)
@@ -163,11 +196,14 @@ static int absorb_volumetric(amsph_sim *s)
     amsph_backend *b = s->backend;
     amsph_laser_state *l = &s->laser;
     const int n = s->particles.n;
+    laser_params pass;
+    AMSPH_CHECK(pass_grid(s, &pass));
+    const int nodes = l->columns * pass.depth_nodes;
     const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
-    const amsph_arg params = amsph_arg_bytes(&l->params, sizeof l->params);
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", l->nodes, field(s, AMSPH_FIELD_POSITION),
+    const amsph_arg params = amsph_arg_bytes(&pass, sizeof pass);
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", nodes, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY), grid,
-                             amsph_arg_buffer(s->grid.cell_start), params, amsph_arg_int(l->nodes),
+                             amsph_arg_buffer(s->grid.cell_start), params, amsph_arg_int(nodes),
                              amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_volume)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", l->columns, amsph_arg_buffer(l->bin_volume),
                              params, amsph_arg_int(l->columns), amsph_arg_buffer(l->bin_power)));

@@ -91,6 +91,29 @@ static inline int laser_node_number(const laser_params *p, const int i[AMSPH_DIM
     return i[AMSPH_DIM - 1] + p->depth_nodes * column;
 }
 
+/* sign q_d of the particles that reach a node of the bin columns (within
+ * one bin of the outermost column across the beam), -1e30 for the others:
+ * with sign +1 its maximum is the deepest of them, with -1 the maximum is
+ * minus the shallowest. The host lays each pass's nodes over that range
+ * only: above the material a column carries its irradiance unchanged, and
+ * below it there is nothing to absorb. */
+KERNEL void laser_depth_extent(GLOBAL const real *position, int n, grid_geometry g, laser_params p, real sign,
+                               GLOBAL real *out)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real axis[AMSPH_DIM][3];
+        laser_frame(&p, axis);
+        real q[AMSPH_DIM];
+        laser_beam_coords(&g, &p, axis, position, a, q);
+        const real reach = (laser_axis_index(&p) + REAL(1.0)) * p.bin_size;
+        int under = 1;
+        for (int k = 0; k < AMSPH_DIM - 1; ++k)
+            under &= fabs(q[k]) < reach;
+        out[a] = under ? sign * q[AMSPH_DIM - 1] : REAL(-1e30);
+    }
+}
+
 /* Particle-in-cell (cloud-in-cell) weight of a particle at `offset` (beam
  * frame, bin units) from a node: Russell 2018 §3.2.2,
  * w = (1 - |C_x - P_x|)(1 - |C_y - P_y|), multilinear in d dimensions; the
