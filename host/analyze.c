@@ -167,7 +167,7 @@ const amsph_analysis_metric amsph_analysis_metrics[] = {
      melt_depth},
     {"penetration", "m",
      "Initial substrate surface minus the melt's bottom (its lowest particle's up coordinate - dx/2); the "
-     "surface is the highest solid particle of the first snapshot + dx/2 (of any non-wall particle if it has "
+     "surface is --surface, else the highest solid particle of the first snapshot + dx/2 (of any non-wall particle if it has "
      "no solid); negative: the melt stays above it",
      penetration},
     {"peak_temperature", "K", "Largest temperature of a fluid or solid particle", peak_temperature},
@@ -263,7 +263,7 @@ static int start_state(amsph_analysis_state *a)
     }
     if (!isfinite(top))
         return amsph_bad_input("the first snapshot has no fluid or solid particles to analyse");
-    a->surface = (isfinite(top_solid) ? top_solid : top) + 0.5 * a->dx;
+    a->surface = isfinite(a->axes.surface) ? a->axes.surface : (isfinite(top_solid) ? top_solid : top) + 0.5 * a->dx;
     a->column_origin = lo - 0.5 * a->dx;
     const double columns = ceil((hi - lo) / a->dx - 1e-6) + 1.0;
     if (columns > AMSPH_ANALYSIS_MAX_COLUMNS)

@@ -21,6 +21,8 @@ typedef struct {
     int up;             /* up (depth, heights); default the last axis */
     double track_at;    /* 3D: the track's coordinate on the third axis; NAN: the
                            middle of the non-wall particles of the first snapshot */
+    double surface;     /* up coordinate of the initial substrate surface; NAN: the top of
+                           the highest solid particle of the first snapshot */
 } amsph_analysis_axes;
 
 #define AMSPH_ANALYSIS_MAX_COLUMNS 65536

@@ -38,6 +38,7 @@ static const char usage[] =
     "  keys                print the case-file key reference (Markdown)\n"
     "  columns             print the series.csv column reference (Markdown)\n"
     "  analyze OUTDIR [--csv FILE] [--plot FILE.png] [--scan x|y|z] [--up x|y|z] [--track-at M]\n"
+    "          [--surface M]\n"
     "                      melt-pool metrics of every snapshot (default OUTDIR/melt_pool.csv),\n"
     "                      plotted over time with --plot; scan axis default x, up the last axis\n"
     "  analyze --metrics   print the metric reference (Markdown)\n"
@@ -169,11 +170,14 @@ static int parse_options(int argc, char **argv, cli_options *o)
                                  has_value ? argv[i + 1] : NULL);
             *(!strcmp(a, "--scan") ? &o->axes.scan : &o->axes.up) = axis;
             ++i;
-        } else if (!strcmp(a, "--track-at")) {
+        } else if (!strcmp(a, "--track-at") || !strcmp(a, "--surface")) {
+            double *value = !strcmp(a, "--track-at") ? &o->axes.track_at : &o->axes.surface;
             char *end = NULL;
-            o->axes.track_at = has_value ? strtod(argv[i + 1], &end) : NAN;
-            if (!has_value || !end || *end || end == argv[i + 1] || !isfinite(o->axes.track_at))
-                return bad_usage("--track-at takes a coordinate in m", has_value ? argv[i + 1] : NULL);
+            *value = has_value ? strtod(argv[i + 1], &end) : NAN;
+            if (!has_value || !end || *end || end == argv[i + 1] || !isfinite(*value))
+                return bad_usage(!strcmp(a, "--track-at") ? "--track-at takes a coordinate in m"
+                                                          : "--surface takes a coordinate in m",
+                                 has_value ? argv[i + 1] : NULL);
             ++i;
         } else if (!strcmp(a, "--metrics")) {
             o->metrics = 1;
@@ -494,7 +498,7 @@ int main(int argc, char **argv)
     cli_options o = {.device = -1,
                      .checkpoint_interval = DEFAULT_CHECKPOINT_INTERVAL,
                      .warmup = -1,
-                     .axes = {.scan = 0, .up = -1, .track_at = NAN}};
+                     .axes = {.scan = 0, .up = -1, .track_at = NAN, .surface = NAN}};
     const int options_from = !strcmp(command, "bench") && argc > 2 ? 3 : 2; /* after `bench WHAT` */
     int status = parse_options(argc - options_from, argv + options_from, &o);
     if (status)

@@ -152,7 +152,7 @@ static void test_synthetic_2d(void)
     const double times[3] = {0.0, 1.0, 3.0};
     write_snapshots(dir, 2, s, times, 3);
     snprintf(csv, sizeof csv, "%s/pool.csv", dir);
-    const amsph_analysis_axes axes = {.scan = 0, .up = -1, .track_at = NAN};
+    const amsph_analysis_axes axes = {.scan = 0, .up = -1, .track_at = NAN, .surface = NAN};
     CHECK_OK(amsph_analyze(dir, &axes, csv));
     table t;
     CHECK(read_table(csv, &t) == 0 && t.rows == 3, "%s: %d rows", csv, t.rows);
@@ -169,6 +169,13 @@ static void test_synthetic_2d(void)
               near(cell(&t, 1, "peak_speed"), 5.0),
           "snapshot 1: penetration %g m (0.4), peak %g K (2500), speed %g m/s (5)", cell(&t, 1, "penetration"),
           cell(&t, 1, "peak_temperature"), cell(&t, 1, "peak_speed"));
+    char given_csv[600];
+    snprintf(given_csv, sizeof given_csv, "%s/pool_surface.csv", dir);
+    table given;
+    const amsph_analysis_axes at_surface = {.scan = 0, .up = -1, .track_at = NAN, .surface = 0.8};
+    CHECK_OK(amsph_analyze(dir, &at_surface, given_csv));
+    CHECK(read_table(given_csv, &given) == 0 && near(cell(&given, 1, "penetration"), 0.2),
+          "snapshot 1 with the surface given at 0.8 m: penetration %g m (0.2)", cell(&given, 1, "penetration"));
     CHECK(near(cell(&t, 1, "track_height_variation"), 0.05),
           "snapshot 1: track height variation %g m (0.05; column 30 is off the track)",
           cell(&t, 1, "track_height_variation"));
@@ -204,7 +211,7 @@ static void test_synthetic_3d(void)
     write_snapshots(dir, 3, s, times, 2);
     snprintf(csv, sizeof csv, "%s/pool.csv", dir);
     for (int scan = 0; scan < 2; ++scan) {
-        const amsph_analysis_axes axes = {.scan = scan, .up = -1, .track_at = NAN};
+        const amsph_analysis_axes axes = {.scan = scan, .up = -1, .track_at = NAN, .surface = NAN};
         table t;
         CHECK_OK(amsph_analyze(dir, &axes, csv));
         CHECK(read_table(csv, &t) == 0 && t.rows == 2, "%s: %d rows", csv, t.rows);
@@ -218,7 +225,7 @@ static void test_synthetic_3d(void)
               cell(&t, 1, "melt_width"), width, cell(&t, 1, "melt_depth"), cell(&t, 1, "penetration"),
               cell(&t, 1, "track_height_variation"));
     }
-    const amsph_analysis_axes same = {.scan = 2, .up = 2, .track_at = NAN};
+    const amsph_analysis_axes same = {.scan = 2, .up = 2, .track_at = NAN, .surface = NAN};
     CHECK(amsph_analyze(dir, &same, csv) == AMSPH_BAD_INPUT, "scan and up on one axis are refused");
     for (int k = 0; k < 2; ++k)
         amsph_host_free(&s[k]);
@@ -270,7 +277,7 @@ static void test_real_run(void)
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
     snprintf(csv, sizeof csv, "%s/melt_pool.csv", dir);
-    const amsph_analysis_axes axes = {.scan = 0, .up = -1, .track_at = NAN};
+    const amsph_analysis_axes axes = {.scan = 0, .up = -1, .track_at = NAN, .surface = NAN};
     CHECK_OK(amsph_analyze(dir, &axes, csv));
     table t;
     CHECK(read_table(csv, &t) == 0 && t.rows == 7, "%s: %d rows (7 snapshots)", csv, t.rows);
