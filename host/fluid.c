@@ -124,8 +124,6 @@ int amsph_fluid_shift(amsph_sim *s, double dt)
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
-    if (!s->shift)
-        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)s->particles.capacity * 3 * sizeof(amsph_real), &s->shift));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "shifting_displacement", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),

@@ -179,7 +179,7 @@ static int pass_grid(amsph_sim *s, laser_params *pass)
     AMSPH_CHECK(depth_extreme(s, 1.0, &deepest));
     AMSPH_CHECK(depth_extreme(s, -1.0, &minus_shallowest));
     int first = 0, last = 0; /* no particle under the columns: one layer above the domain */
-    if (deepest > -1e29) {
+    if (deepest > 0.5 * LASER_NOT_UNDER) {
         const double lo = pass->depth_lo, size = pass->bin_size;
         first = (int)fmax(0.0, floor((-minus_shallowest - lo) / size) - 1.0);
         last = (int)fmin(pass->depth_nodes - 1.0, ceil((deepest - lo) / size) + 1.0);

@@ -183,6 +183,8 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_surface_check_grid(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
+    if (c->fluid.shifting > 0.0)
+        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 3 * sizeof(amsph_real), &s->shift));
     return upload_materials(s);
 }
 

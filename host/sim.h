@@ -72,7 +72,7 @@ typedef struct {
     amsph_grid grid;
     amsph_buffer *work;      /* one real per particle, for reductions */
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
-    amsph_buffer *shift;     /* particle shifting displacements (fluid.shifting), made on first use */
+    amsph_buffer *shift;     /* particle shifting displacements, three reals per particle (fluid.shifting) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */

@@ -92,7 +92,7 @@ static inline int laser_node_number(const laser_params *p, const int i[AMSPH_DIM
 }
 
 /* sign q_d of the particles that reach a node of the bin columns (within
- * one bin of the outermost column across the beam), -1e30 for the others:
+ * one bin of the outermost column across the beam), LASER_NOT_UNDER for the others:
  * with sign +1 its maximum is the deepest of them, with -1 the maximum is
  * minus the shallowest. The host lays each pass's nodes over that range
  * only: above the material a column carries its irradiance unchanged, and
@@ -110,7 +110,7 @@ KERNEL void laser_depth_extent(GLOBAL const real *position, int n, grid_geometry
         int under = 1;
         for (int k = 0; k < AMSPH_DIM - 1; ++k)
             under &= fabs(q[k]) < reach;
-        out[a] = under ? sign * q[AMSPH_DIM - 1] : REAL(-1e30);
+        out[a] = under ? sign * q[AMSPH_DIM - 1] : (real)LASER_NOT_UNDER;
     }
 }
 

@@ -19,6 +19,9 @@
 #define AMSPH_SHARED_REAL real
 #endif
 
+/* laser_depth_extent's value for a particle under no bin column. */
+#define LASER_NOT_UNDER (-1e30)
+
 typedef struct {
     AMSPH_SHARED_REAL centre[3];      /* a point on the beam axis, m */
     AMSPH_SHARED_REAL direction[3];   /* d, unit */
