@@ -57,6 +57,7 @@ typedef enum {
     SEC_LASER,
     SEC_LASER_PATH,
     SEC_HISTORY,
+    SEC_GRAINS,
     SEC_MATERIAL,
     SEC_GEOMETRY
 } section_id;
@@ -64,7 +65,7 @@ typedef enum {
 /* How each section is named in the key reference. */
 static const char *const section_prefix[] = {
     "",       "domain.",       "fluid.",       "thermal.", "surface.", "laser.", "laser.path[].",
-    "temperature_history.", "materials[].", "geometry[]."};
+    "temperature_history.", "grains.", "materials[].", "geometry[]."};
 
 typedef enum {
     VT_INT,      /* int */
@@ -113,6 +114,7 @@ static const choice distribution_choices[] = {{"regular", AMSPH_POWDER_REGULAR, 
 static const choice kind_choices[] = {{"fluid", AMSPH_KIND_FLUID, 0},
                                       {"wall", AMSPH_KIND_WALL, 0},
                                       {"solid", AMSPH_KIND_SOLID, 0},
+                                      {"grain", AMSPH_KIND_GRAIN, 0},
                                       {NULL, 0, 0}};
 static const choice face_choices[] = {{"-x", (int)AMSPH_FACE_BIT(0, 0), 0},
                                       {"+x", (int)AMSPH_FACE_BIT(0, 1), 0},
@@ -225,6 +227,7 @@ typedef struct {
 #define THERMAL(field) offsetof(amsph_case, thermal.field)
 #define SURFACE(field) offsetof(amsph_case, surface.field)
 #define LASER(field) offsetof(amsph_case, laser.field)
+#define GRAINS(field) offsetof(amsph_case, grains.field)
 #define SEGMENT(field) offsetof(amsph_laser_segment, field)
 #define HISTORY(field) offsetof(amsph_case, temperature_history.field)
 #define MAT(field) offsetof(amsph_material, field)
@@ -381,6 +384,22 @@ static const key_spec specs[] = {
      .offset = SURFACE(min_shepard),
      .doc = "Particles whose kernel sum Σ V W (at the surface smoothing length) is below this "
             "(lone particles, films a particle thick) carry no surface force"},
+    {.section = SEC_TOP, .key = "grains", .type = VT_MAP, .sub = SEC_GRAINS,
+     .rule = "needs `fluid`, a block of kind `grain`, no periodic axis",
+     .doc = "Mobile powder: each block of kind `grain` (each grain of a `powder_bed` of that kind) "
+            "is a rigid body of particles that the fluid and contacts move (Fuchs et al. 2022 "
+            "§2.2, §3.4); present: on"},
+    {.section = SEC_GRAINS, .key = "contact_stiffness", .type = VT_NUMBER, .unit = "kg/s²",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = GRAINS(stiffness),
+     .doc = "k_c of the contact force between particles of different grains, and of a grain and "
+            "a wall or fixed solid (Fuchs Eqs. 39-40); sets the time step 0.22 √(m/k_c) (Eq. 42)"},
+    {.section = SEC_GRAINS, .key = "contact_damping", .type = VT_NUMBER, .unit = "kg/s",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = GRAINS(damping),
+     .doc = "d_c of the contact force, on the closing speed"},
+    {.section = SEC_GRAINS, .key = "contact_distance", .type = VT_NUMBER, .unit = "m",
+     .flags = F_ABOVE_LO | F_NO_DEFAULT, .lo = 0, .offset = GRAINS(distance),
+     .rule = "at most the kernel support (checked when the scene is built)",
+     .doc = "Particles closer than this are in contact; not set: `dx` (Fuchs Eq. 40)"},
     {.section = SEC_TOP, .key = "laser", .type = VT_MAP, .sub = SEC_LASER,
      .doc = "Laser heat source: a Gaussian beam (Russell 2018 Eq. 3.42) absorbed into the particles' "
             "`laser_power`; present: on. In 2D the plane is a slice through the beam axis, so "
@@ -568,7 +587,10 @@ static const key_spec specs[] = {
      .flags = F_REQUIRED | F_SELECTS_VARIANT, .offset = GEO(shape),
      .doc = "Shape of the body; decides which keys below apply"},
     {.section = SEC_GEOMETRY, .key = "kind", .type = VT_CHOICE, .choices = kind_choices,
-     .flags = F_REQUIRED, .offset = GEO(kind), .doc = "Kind of the particles"},
+     .flags = F_REQUIRED, .offset = GEO(kind), .rule = "`grain` needs `grains`",
+     .doc = "Kind of the particles: `fluid`; `wall` (boundary particles); `solid` (fixed, melts "
+            "into fluid with the thermal module); `grain` (the block, or each grain of a powder "
+            "bed, is one mobile rigid grain)"},
     {.section = SEC_GEOMETRY, .key = "material", .type = VT_MATERIAL, .flags = F_REQUIRED,
      .offset = GEO(material), .rule = "name of a material",
      .doc = "Material of the particles"},
@@ -662,7 +684,8 @@ typedef struct {
     size_t surface_line;                       /* where the surface section starts */
     yaml_node_t preset_key[MAX_PRESET_KEYS];   /* the keys and values a preset fills into */
     yaml_node_t preset_value[MAX_PRESET_KEYS]; /* the material being read */
-    size_t history_line;                       /* where the temperature history starts */
+    size_t history_line;
+    size_t grains_line;                        /* where the grains section starts */                       /* where the temperature history starts */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -1604,9 +1627,39 @@ static int check_density_tables(parser *p)
     return 0;
 }
 
+/* Grains move in the fluid module's flow, and blocks of kind `grain` and
+ * the `grains:` section come together. A grain's centre and inertia are
+ * sums of particle positions, which a periodic axis would break. */
+static int finish_grains(parser *p)
+{
+    amsph_case *c = p->c;
+    int block = -1;
+    for (int k = 0; k < c->n_geometry && block < 0; k++)
+        if (c->geometry[k].kind == AMSPH_KIND_GRAIN)
+            block = k;
+    if (!c->grains.enabled)
+        return block < 0 ? 0
+                         : fail(p, (size_t)c->geometry[block].line,
+                                "geometry[%d] is of kind 'grain', which needs a 'grains:' section (with "
+                                "'contact_stiffness')",
+                                block);
+    if (block < 0)
+        return fail(p, p->grains_line, "'grains' is set, but no geometry block is of kind 'grain'");
+    if (!c->fluid.enabled)
+        return fail(p, p->grains_line, "'grains' needs the fluid module (a 'fluid:' section)");
+    for (int d = 0; d < c->dim; d++)
+        if (c->periodic[d])
+            return fail(p, p->grains_line, "'grains' cannot be used with a periodic axis (%c)", "xyz"[d]);
+    if (c->grains.distance == 0)
+        c->grains.distance = c->dx;
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
+    if (finish_grains(p))
+        return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
     if (p->c->surface.enabled && finish_surface(p))
@@ -1785,6 +1838,10 @@ static int finish_scope(parser *p, const scope *sc)
         return 0;
     case SEC_LASER:
         return finish_laser(p, sc);
+    case SEC_GRAINS:
+        p->c->grains.enabled = 1;
+        p->grains_line = line_of(sc->map);
+        return 0;
     case SEC_LASER_PATH:
         return 0;
     case SEC_HISTORY:

@@ -22,7 +22,8 @@ typedef enum { AMSPH_KERNEL_WENDLAND = 0, AMSPH_KERNEL_QUINTIC = 1 } amsph_kerne
 typedef enum {
     AMSPH_KIND_FLUID = KIND_FLUID,
     AMSPH_KIND_WALL = KIND_WALL,
-    AMSPH_KIND_SOLID = KIND_SOLID
+    AMSPH_KIND_SOLID = KIND_SOLID,
+    AMSPH_KIND_GRAIN = KIND_GRAIN
 } amsph_kind;
 
 typedef enum {
@@ -179,6 +180,15 @@ typedef struct {
     double min_shepard;   /* particles with a Shepard sum below this carry no surface force */
 } amsph_surface_settings;
 
+/* Mobile powder grains (rigid bodies of particles, host/grains.h); on when
+ * the case has a `grains:` section, which the blocks of kind `grain` need. */
+typedef struct {
+    int enabled;
+    double stiffness; /* contact stiffness k_c (Fuchs et al. 2022 Eq. 39), kg/s^2, > 0 */
+    double damping;   /* contact damping d_c, kg/s, >= 0 (default 0) */
+    double distance;  /* contact distance, m (default dx) */
+} amsph_grains_settings;
+
 /* A temperature prescribed uniformly on every particle, for cases without
  * the thermal module (host/thermal.h); on when the case has a
  * `temperature_history:` section:
@@ -243,6 +253,7 @@ typedef struct {
     amsph_thermal_settings thermal;
     amsph_surface_settings surface;
     amsph_laser_settings laser;
+    amsph_grains_settings grains;
     amsph_temperature_history temperature_history;
     int n_materials;
     amsph_material materials[AMSPH_MAX_MATERIALS];

@@ -132,7 +132,7 @@ int amsph_fluid_shift(amsph_sim *s, double dt)
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              amsph_arg_real(dt), amsph_arg_buffer(s->shift)));
     /* position += 1 * shift */
-    return AMSPH_LAUNCH(b, "drift", n, amsph_arg_buffer(s->shift), amsph_arg_int(n), amsph_arg_real(1.0),
+    return AMSPH_LAUNCH(b, "drift", n, field(s, AMSPH_FIELD_KIND), amsph_arg_buffer(s->shift), amsph_arg_int(n), amsph_arg_real(1.0),
                         field(s, AMSPH_FIELD_POSITION));
 }
 

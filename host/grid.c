@@ -5,8 +5,6 @@
 
 #include "error.h"
 
-#define SCAN_CHUNKS 1024
-
 static const char axis_name[3] = {'x', 'y', 'z'};
 
 static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double hi[3],
@@ -55,7 +53,7 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->count));
     AMSPH_CHECK(amsph_buffer_alloc(b, buckets * sizeof(int), &g->fill));
-    AMSPH_CHECK(amsph_buffer_alloc(b, SCAN_CHUNKS * sizeof(int), &g->chunk_total));
+    AMSPH_CHECK(amsph_buffer_alloc(b, AMSPH_SCAN_CHUNKS * sizeof(int), &g->chunk_total));
     return 0;
 }
 
@@ -78,19 +76,16 @@ static int fill_zero(amsph_backend *b, amsph_buffer *buf, int n)
                         amsph_arg_uint(0));
 }
 
-/* cell_start = exclusive prefix sum of count over n entries. */
-static int prefix_sum(amsph_grid *g, amsph_backend *b, int n)
+int amsph_exclusive_scan(amsph_backend *b, amsph_buffer *in, amsph_buffer *out, amsph_buffer *chunk_total, int n)
 {
-    const int chunk = (n + SCAN_CHUNKS - 1) / SCAN_CHUNKS;
+    const int chunk = (n + AMSPH_SCAN_CHUNKS - 1) / AMSPH_SCAN_CHUNKS;
     const int nchunks = (n + chunk - 1) / chunk;
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_chunks", nchunks, amsph_arg_buffer(g->count),
-                             amsph_arg_int(n), amsph_arg_int(chunk), amsph_arg_int(nchunks),
-                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->chunk_total)));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_totals", 1, amsph_arg_buffer(g->chunk_total),
-                             amsph_arg_int(nchunks)));
-    return AMSPH_LAUNCH(b, "scan_add", nchunks, amsph_arg_buffer(g->cell_start), amsph_arg_int(n),
-                        amsph_arg_int(chunk), amsph_arg_int(nchunks),
-                        amsph_arg_buffer(g->chunk_total));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_chunks", nchunks, amsph_arg_buffer(in), amsph_arg_int(n),
+                             amsph_arg_int(chunk), amsph_arg_int(nchunks), amsph_arg_buffer(out),
+                             amsph_arg_buffer(chunk_total)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "scan_totals", 1, amsph_arg_buffer(chunk_total), amsph_arg_int(nchunks)));
+    return AMSPH_LAUNCH(b, "scan_add", nchunks, amsph_arg_buffer(out), amsph_arg_int(n), amsph_arg_int(chunk),
+                        amsph_arg_int(nchunks), amsph_arg_buffer(chunk_total));
 }
 
 /* Reorders one buffer of `words` 32-bit words per particle by g->order,
@@ -123,7 +118,7 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_bin", n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
                              amsph_arg_int(n), amsph_arg_bytes(&g->geometry, sizeof g->geometry),
                              amsph_arg_buffer(g->cell), amsph_arg_buffer(g->count)));
-    AMSPH_CHECK(prefix_sum(g, b, buckets + 1));
+    AMSPH_CHECK(amsph_exclusive_scan(b, g->count, g->cell_start, g->chunk_total, buckets + 1));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_scatter", n, amsph_arg_buffer(g->cell), amsph_arg_int(n),
                              amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->fill),
                              amsph_arg_buffer(g->order)));

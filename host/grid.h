@@ -32,6 +32,11 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
 /* Bins and sorts the particles, reorders every present field, and drops the
  * particles that left the domain (p->n shrinks, p->removed grows). */
 int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
+
+/* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl),
+ * with chunk_total a scratch of AMSPH_SCAN_CHUNKS ints. */
+#define AMSPH_SCAN_CHUNKS 1024
+int amsph_exclusive_scan(amsph_backend *b, amsph_buffer *in, amsph_buffer *out, amsph_buffer *chunk_total, int n);
 void amsph_grid_free(amsph_grid *g, amsph_backend *b);
 
 #endif

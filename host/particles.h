@@ -42,7 +42,8 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(NORMAL_WEIGHT, "normal_weight", AMSPH_TYPE_REAL, 1, "1", 0)                                  \
     X(RAW_CURVATURE, "raw_curvature", AMSPH_TYPE_REAL, 1, "1/m", 0)                                \
     X(CURVATURE, "curvature", AMSPH_TYPE_REAL, 1, "1/m", AMSPH_FIELD_OUTPUT)                       \
-    X(SURFACE_TENSION, "surface_tension", AMSPH_TYPE_REAL, 1, "N/m", AMSPH_FIELD_OUTPUT)
+    X(SURFACE_TENSION, "surface_tension", AMSPH_TYPE_REAL, 1, "N/m", AMSPH_FIELD_OUTPUT)            \
+    X(GRAIN, "grain", AMSPH_TYPE_INT, 1, "1", AMSPH_FIELD_OUTPUT)
 
 #define AMSPH_FIELD_ENUM(id, name, type, comps, unit, flags) AMSPH_FIELD_##id,
 typedef enum { AMSPH_FIELDS(AMSPH_FIELD_ENUM) AMSPH_FIELD_COUNT } amsph_field_id;

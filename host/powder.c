@@ -455,7 +455,7 @@ double amsph_powder_packing_fraction(const amsph_powder *bed, const amsph_geomet
     return grains / region;
 }
 
-int amsph_powder_contains(const amsph_powder *bed, const double x[3])
+int amsph_powder_grain_at(const amsph_powder *bed, const double x[3])
 {
     for (int i = 0; i < bed->n; ++i) {
         const amsph_grain *g = &bed->grain[i];
@@ -463,7 +463,12 @@ int amsph_powder_contains(const amsph_powder *bed, const double x[3])
         for (int k = 0; k < bed->dim; ++k)
             d2 += (x[k] - g->centre[k]) * (x[k] - g->centre[k]);
         if (d2 < g->radius * g->radius)
-            return 1;
+            return i;
     }
-    return 0;
+    return -1;
+}
+
+int amsph_powder_contains(const amsph_powder *bed, const double x[3])
+{
+    return amsph_powder_grain_at(bed, x) >= 0;
 }

@@ -53,6 +53,8 @@ double amsph_powder_packing_fraction(const amsph_powder *bed, const amsph_geomet
 
 /* Whether x lies inside a grain. */
 int amsph_powder_contains(const amsph_powder *bed, const double x[3]);
+/* The index of the grain x lies in, or -1. */
+int amsph_powder_grain_at(const amsph_powder *bed, const double x[3]);
 
 /* Smallest grain radius the distribution of block g can draw, m. */
 double amsph_powder_smallest_radius(const amsph_geometry *g);

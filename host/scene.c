@@ -7,6 +7,8 @@
 #include "error.h"
 #include "material.h"
 #include "powder.h"
+#define AMSPH_SHARED_REAL amsph_real
+#include "grain_params.h"
 
 /* Lattice of spacing dx over [lo, hi) per axis, points at cell centres. */
 typedef struct {
@@ -110,8 +112,9 @@ static double initial_temperature(const amsph_case *c, const amsph_geometry *g)
 }
 
 /* Density rho0(T) at the initial temperature and mass rho0 dx^d: each
- * particle fills the lattice volume dx^d. */
-static void set_particle(const amsph_case *c, const amsph_geometry *g, const double x[3],
+ * particle fills the lattice volume dx^d. `grain` is the grain index of a
+ * grain particle (the `grain` field, present when the scene has grains). */
+static void set_particle(const amsph_case *c, const amsph_geometry *g, const double x[3], int grain,
                          amsph_host_particles *h, int i)
 {
     const double temperature = initial_temperature(c, g);
@@ -129,12 +132,15 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
     ((unsigned *)h->data[AMSPH_FIELD_ID])[i] = (unsigned)i;
     if (h->data[AMSPH_FIELD_TEMPERATURE])
         amsph_host_real(h, AMSPH_FIELD_TEMPERATURE)[i] = (amsph_real)temperature;
+    if (h->data[AMSPH_FIELD_GRAIN])
+        ((int *)h->data[AMSPH_FIELD_GRAIN])[i] = g->kind == AMSPH_KIND_GRAIN ? grain : GRAIN_NONE;
 }
 
 /* Visits the lattice points of block g: counts them, or (h != NULL) checks
- * and stores them from particle index h->n - count onwards. */
+ * and stores them from particle index h->n - count onwards. A block of kind
+ * grain is grain first_grain; a powder bed's grain i is first_grain + i. */
 static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
-                       amsph_host_particles *h, long long *count)
+                       int first_grain, amsph_host_particles *h, long long *count)
 {
     const lattice l = block_lattice(g, c->dim, c->dx);
     const long long points = (long long)l.count[0] * l.count[1] * l.count[2];
@@ -147,7 +153,8 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
             continue;
         if (h) {
             AMSPH_CHECK(check_inside_domain(c, g, x));
-            set_particle(c, g, x, h, (int)(first + found));
+            set_particle(c, g, x, first_grain + (bed ? amsph_powder_grain_at(bed, x) : 0), h,
+                         (int)(first + found));
         }
         ++found;
     }
@@ -259,7 +266,9 @@ static void sort_columns(column_entry *e, int count, double dx)
  *   rho_i = rho0_i + p_i / c0_i^2 (the equation of state),
  * with rho0 the particles' initial density, and mass rho_i dx^d, so that
  * each particle keeps the lattice volume. Blocks stacked on a common
- * lattice start in balance with each other, whatever their rho0. */
+ * lattice start in balance with each other, whatever their rho0. A
+ * non-fluid particle (a grain or solid in a hydrostatic block) keeps its
+ * state and counts in the column with the rho0 of the fluid above it. */
 static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_particles *h)
 {
     const double gnorm = sqrt(c->gravity[0] * c->gravity[0] + c->gravity[1] * c->gravity[1] +
@@ -279,12 +288,21 @@ static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_par
     sort_columns(entries, count, c->dx);
     amsph_real *rho = amsph_host_real(h, AMSPH_FIELD_DENSITY);
     const int *material = h->data[AMSPH_FIELD_MATERIAL];
-    double above = 0.0; /* sum of rho0 over the column above */
+    const int *kind = h->data[AMSPH_FIELD_KIND];
+    double above = 0.0;      /* sum of rho0 over the column above */
+    double fluid_rho0 = 0.0; /* of the last fluid particle above, 0 for none */
     for (int k = 0; k < count; ++k) {
         if (k > 0 && entries[k].group != entries[k - 1].group)
-            above = 0.0;
+            above = fluid_rho0 = 0.0;
         const int i = entries[k].index;
         const double rho0 = rho[i], c0 = c->materials[material[i]].sound_speed;
+        if (kind[i] != AMSPH_KIND_FLUID) {
+            /* a body held in the fluid: below it the fluid has the pressure
+             * of its depth, as if the fluid above filled the body */
+            above += fluid_rho0 > 0.0 ? fluid_rho0 : rho0;
+            continue;
+        }
+        fluid_rho0 = rho0;
         const double p = gnorm * c->dx * (above + 0.5 * rho0);
         above += rho0;
         rho[i] = (amsph_real)(rho0 + p / (c0 * c0));
@@ -295,10 +313,10 @@ static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_par
 }
 
 static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
-                      amsph_host_particles *h)
+                      int first_grain, amsph_host_particles *h)
 {
     long long count = 0;
-    AMSPH_CHECK(visit_block(c, g, bed, NULL, &count));
+    AMSPH_CHECK(visit_block(c, g, bed, first_grain, NULL, &count));
     if (count == 0)
         return amsph_fail("%s:%d: geometry block holds no particle at dx = %g m; make it larger "
                           "than dx",
@@ -306,16 +324,21 @@ static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
-    return visit_block(c, g, bed, h, &count);
+    return visit_block(c, g, bed, first_grain, h, &count);
 }
 
 /* Grains resolved by at least this many dx in radius. */
 #define GRAIN_RADIUS_MIN_DX 2.0
 
-static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h)
+/* Adds block g's particles; a block of kind grain takes the next grain
+ * indices from *next_grain (one, or one per grain of a powder bed). */
+static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_particles *h, int *next_grain)
 {
-    if (g->shape != AMSPH_SHAPE_POWDER_BED)
-        return fill_block(c, g, NULL, h);
+    const int first_grain = *next_grain;
+    if (g->shape != AMSPH_SHAPE_POWDER_BED) {
+        *next_grain += g->kind == AMSPH_KIND_GRAIN;
+        return fill_block(c, g, NULL, first_grain, h);
+    }
     const double smallest = amsph_powder_smallest_radius(g);
     if (smallest < GRAIN_RADIUS_MIN_DX * c->dx)
         return amsph_fail("%s:%d: powder grains of radius %g m are not resolved at dx = %g m; "
@@ -324,7 +347,8 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
                           GRAIN_RADIUS_MIN_DX);
     amsph_powder bed;
     AMSPH_CHECK(amsph_powder_deposit(g, c->dim, &bed));
-    const int status = fill_block(c, g, &bed, h);
+    *next_grain += g->kind == AMSPH_KIND_GRAIN ? bed.n : 0;
+    const int status = fill_block(c, g, &bed, first_grain, h);
     amsph_powder_free(&bed);
     return status;
 }
@@ -357,10 +381,12 @@ int amsph_scene_build(const amsph_case *c, amsph_host_particles *h)
                                       c->path, c->geometry[k].line);
         AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_TEMPERATURE));
     }
-    int first[AMSPH_MAX_GEOMETRY + 1];
+    if (c->grains.enabled)
+        AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_GRAIN));
+    int first[AMSPH_MAX_GEOMETRY + 1], next_grain = 0;
     for (int k = 0; k < c->n_geometry; ++k) {
         first[k] = h->n;
-        AMSPH_CHECK(add_block(c, &c->geometry[k], h));
+        AMSPH_CHECK(add_block(c, &c->geometry[k], h, &next_grain));
     }
     first[c->n_geometry] = h->n;
     return set_hydrostatic(c, first, h);

@@ -8,6 +8,7 @@
 #include "error.h"
 #include "evaporation.h"
 #include "fluid.h"
+#include "grains.h"
 #include "guards.h"
 #include "laser.h"
 #include "materials.h"
@@ -87,6 +88,8 @@ static int compute_rates(amsph_sim *s, double dt)
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_FORCES, NULL));
     if (s->config.fluid.enabled) {
         AMSPH_CHECK(amsph_fluid_forces(s));
+        if (s->config.grains.enabled)
+            AMSPH_CHECK(amsph_grains_forces(s));
         if (s->config.thermal.enabled && s->config.thermal.recoil_pressure) {
             AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
             AMSPH_CHECK(amsph_evaporation_recoil(s));
@@ -145,6 +148,8 @@ static int build_host_particles(amsph_sim *s, amsph_host_particles *host)
         status = amsph_surface_setup(s, host);
     if (!status && s->config.laser.enabled)
         status = amsph_laser_setup(s, host);
+    if (!status && s->config.grains.enabled)
+        status = amsph_grains_setup(s, host);
     return status;
 }
 
@@ -185,6 +190,8 @@ static int allocate_device_state(amsph_sim *s)
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
     if (c->fluid.shifting > 0.0)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 3 * sizeof(amsph_real), &s->shift));
+    if (c->grains.enabled)
+        AMSPH_CHECK(amsph_grains_allocate(s));
     return upload_materials(s);
 }
 
@@ -213,6 +220,8 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);
+    if (s->config.grains.enabled)
+        amsph_grains_free(s);
     amsph_buffer_free(s->backend, s->laser.bin_weight);
     amsph_buffer_free(s->backend, s->laser.bin_volume);
     amsph_buffer_free(s->backend, s->laser.bin_power);
@@ -297,7 +306,7 @@ int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_sta
     amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT];
     memcpy(scalar, st->scalar, sizeof scalar);
     copy_scalars(s, scalar, 1);
-    return 0;
+    return c->grains.enabled ? amsph_grains_recover(s) : 0;
 }
 
 int amsph_sim_save(amsph_sim *s, amsph_sim_state *st)
@@ -353,6 +362,8 @@ static int stable_dt(amsph_sim *s, double *dt)
         AMSPH_CHECK(amsph_surface_dt(s, dt, &s->dt_limit));
     if (s->config.thermal.enabled)
         amsph_thermal_dt(s, dt, &s->dt_limit);
+    if (s->config.grains.enabled)
+        amsph_grains_dt(s, dt, &s->dt_limit);
     if (s->dt_min == 0.0 && isfinite(*dt))
         s->dt_min = s->config.fluid.dt_min > 0.0 ? s->config.fluid.dt_min : 1e-6 * *dt;
     if (*dt < s->dt_min || !(*dt > 0.0))
@@ -373,9 +384,10 @@ int amsph_sim_stable_dt(amsph_sim *s, double *dt)
 static int kick(amsph_sim *s, double half_dt)
 {
     amsph_particles *p = &s->particles;
-    return AMSPH_LAUNCH(s->backend, "kick", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
-                        amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]), amsph_arg_int(p->n),
-                        amsph_arg_real(half_dt), amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]));
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "kick", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]), amsph_arg_int(p->n),
+                             amsph_arg_real(half_dt), amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY])));
+    return s->config.grains.enabled ? amsph_grains_kick(s, half_dt) : 0;
 }
 
 int amsph_sim_step(amsph_sim *s, double dt)
@@ -384,9 +396,12 @@ int amsph_sim_step(amsph_sim *s, double dt)
     amsph_phase outside;
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
     AMSPH_CHECK(kick(s, 0.5 * dt));
-    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "drift", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "drift", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
                              amsph_arg_int(p->n), amsph_arg_real(dt),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION])));
+    if (s->config.grains.enabled)
+        AMSPH_CHECK(amsph_grains_drift(s, dt));
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
     if (s->config.thermal.enabled)
         AMSPH_CHECK(amsph_thermal_book_departures(s));

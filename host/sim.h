@@ -54,6 +54,18 @@ typedef struct {
     amsph_buffer *evaporated; /* 1 for a particle that evaporates now, else 0 (evaporate_hot) */
 } amsph_thermal_work;
 #include "laser_params.h"
+#include "grain_params.h"
+
+/* The grains module's state (host/grains.h). */
+typedef struct {
+    int count;              /* grains (indices 0 .. count - 1 in the `grain` field) */
+    grain_params params;
+    double smallest_mass;   /* of a grain particle, kg (2D: kg/m), for the contact time step */
+    int recover_spin;       /* the next sums take the angular velocities from the particles */
+    amsph_buffer *records;  /* count x GRAIN_RECORD reals (kernels/grain_params.h) */
+    amsph_buffer *chunk_count, *chunk_offset, *chunk_total; /* the grain-by-grain sort's counters */
+    amsph_buffer *order;    /* the grain particles, grain by grain */
+} amsph_grains_state;
 
 /* The laser module's state (host/laser.h). */
 typedef struct {
@@ -84,6 +96,7 @@ typedef struct {
     long long evaporated_particles; /* removed above thermal.evaporation_temperature, since the start */
     double thermal_dt;      /* the diffusion limit, s (fixed for the run) */
     amsph_laser_state laser;
+    amsph_grains_state grains;
     surface_params surface;
     double h;       /* smoothing length, m */
     double support; /* kernel support radius, m */

@@ -6,6 +6,7 @@
 
 #include "error.h"
 #include "evaporation.h"
+#include "grains.h"
 #include "laser.h"
 #include "material.h"
 #include "thermal_table.h"
@@ -202,6 +203,8 @@ static int update_state(amsph_sim *s)
 
 static int finish_step(amsph_sim *s)
 {
+    if (s->config.grains.enabled && s->thermal.phase_change_kinds)
+        AMSPH_CHECK(amsph_grains_change_phase(s));
     return AMSPH_LAUNCH(s->backend, "finish_thermal_step", s->particles.n,
                         field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_TEMPERATURE),
                         field(s, AMSPH_FIELD_LIQUID_FRACTION), amsph_arg_int(s->particles.n),

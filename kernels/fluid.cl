@@ -2,6 +2,7 @@
  * equation of state, wall states, and the pair forces (pressure, viscosity).
  * Pair loops gather: particle a reads its neighbours b and writes only a. */
 #include "device.h"
+#include "fluid_pair.h"
 #include "fluid_params.h"
 #include "kinds.h"
 #include "materials.h"
@@ -114,52 +115,6 @@ static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, r
     return REAL(2.0) * (q_a - q_b) * r_dot_grad / (r2 + p->eta2) * v_b;
 }
 
-/* Laminar viscosity (Morris, Fox & Zhu 1997 Eq. 8) with the harmonic mean
- * 2 mu_a mu_b / (mu_a + mu_b) in place of (mu_a + mu_b) / 2 (Russell 2018
- * Eq. 3.18) for unequal viscosities:
- *   a_a += sum_b m_b 4 mu_a mu_b / (mu_a + mu_b) / (rho_a rho_b)
- *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab  */
-static inline real laminar_viscosity_factor(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
-                                            real r_dot_grad, real r2, const fluid_params *p)
-{
-    const real mu_sum = mu_a + mu_b;
-    const real mu_ab = mu_sum > REAL(0.0) ? REAL(4.0) * mu_a * mu_b / mu_sum : REAL(0.0);
-    return m_b * mu_ab / (rho_a * rho_b) * r_dot_grad / (r2 + p->eta2);
-}
-
-/* Monaghan (1992) artificial viscosity, for approaching pairs:
- *   Pi_ab = -alpha c h (u_ab . r_ab) / (rho_mean (r_ab^2 + eta^2)),  a_a -= m_b Pi_ab grad_a W_ab */
-static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real rho_mean,
-                                        const fluid_params *p)
-{
-    if (u_dot_r >= REAL(0.0))
-        return REAL(0.0);
-    return -p->artificial_alpha * c_mean * p->h * u_dot_r / (rho_mean * (r2 + p->eta2));
-}
-
-/* Monaghan (2000) artificial pressure against the tensile instability.
- * Particles under tension (p below the background pressure p_bg) attract
- * each other, and the continuity density does not stop two of them closing
- * up: in the 2D dam break, thin films along the walls pair up to 0.3 dx at
- * negative pressures of a few hundred Pa. A short-range repulsion for the
- * tensile part of the pair's pressures,
- *   a_a -= m_b R (W_ab / W(dx))^4 grad_a W_ab,
- *   R = eps (max(p_bg - p_a, 0) / rho_a^2 + max(p_bg - p_b, 0) / rho_b^2),
- * returned as the factor of r_ab. Between fluid particles only (against a
- * wall it pushes a film under tension off the wall, lowering its density).
- * Keep eps small: at 0.15 and above the dam break's film along the left wall
- * runs away in tension (density guard); 0.05 to 0.1 runs. */
-static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b, real m_b, real r,
-                                      real f, const fluid_params *p)
-{
-    const real tension_a = fmax(p->background_pressure - p_a, REAL(0.0));
-    const real tension_b = fmax(p->background_pressure - p_b, REAL(0.0));
-    const real big_r = p->tensile_correction * (tension_a / (rho_a * rho_a) + tension_b / (rho_b * rho_b));
-    const real fw = smoothing_w(r, p->h) / smoothing_w(p->dx, p->h);
-    const real fw2 = fw * fw;
-    return -m_b * big_r * fw2 * fw2 * f;
-}
-
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
  * velocity, so that the density advances like a position (see
  * kernels/integrate.cl):
@@ -229,13 +184,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     }
 }
 
-/* Acceleration of the fluid particles: gravity + pressure gradient +
- * viscosity. Pressure gradient (Russell 2018 Eq. 3.17):
- *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
- *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
- * plus, if set, the tensile correction (above). The viscosity follows the
- * liquid fraction through the mushy zone (materials.h). Walls enter with their Adami
- * state; viscosity sees their ghost velocity (no-slip) or nothing (free-slip). */
+/* Acceleration of the fluid particles: gravity + the pair forces of
+ * kernels/fluid_pair.h. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *mass,
@@ -254,47 +204,14 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             real x_a[3];
             grid_point(position, a, x_a);
             const real support = SUPPORT_OVER_H * p.h;
-            const int mat_a = material[a];
-            const real rho_a = density[a], p_a = pressure[a];
-            const real mu_a = particle_viscosity(materials, mat_a, liquid_fraction[a]);
-            const real c_a = material_value(materials, mat_a, MATERIAL_SOUND_SPEED);
-            const int renormalised = p.pressure_gradient == PRESSURE_RENORMALISED;
-            const real gamma_a = renormalised ? gamma[a] : REAL(1.0);
+            const fluid_pair_side s_a =
+                fluid_pair_side_of(a, velocity, density, pressure, gamma, liquid_fraction, material, materials, &p);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
-                real r_ab[3];
-                grid_displacement(&run, position, b, r_ab);
-                const real r2 = dot3(r_ab, r_ab);
-                if (b == a || r2 >= support * support)
-                    continue;
-                const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
-                const int fluid_b = kind[b] == KIND_FLUID;
-                const int mat_b = material[b];
-                const real rho_b = density[b], m_b = mass[b];
-                const real gamma_b = renormalised ? gamma[b] : REAL(1.0);
-                real pressure_term =
-                    -m_b / (rho_a * rho_b) * (pressure[b] / gamma_a + p_a / gamma_b) * f;
-                if (fluid_b && p.tensile_correction > REAL(0.0))
-                    pressure_term += tensile_correction(p_a, pressure[b], rho_a, rho_b, m_b, sqrt(r2), f, &p);
-                real u_visc[3];
-                for (int d = 0; d < 3; ++d)
-                    u_visc[d] = velocity[3 * a + d] -
-                                (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);
-                real visc_scalar = REAL(0.0); /* multiplies u_visc */
-                real visc_radial = REAL(0.0); /* multiplies r_ab */
-                if (fluid_b || p.wall_slip == WALL_NO_SLIP) {
-                    if (p.viscosity == VISCOSITY_LAMINAR) {
-                        const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
-                        visc_scalar = laminar_viscosity_factor(mu_a, mu_b, m_b, rho_a, rho_b, f * r2, r2, &p);
-                    } else {
-                        const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
-                        visc_radial = -m_b * f *
-                                      artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (c_a + c_b),
-                                                           REAL(0.5) * (rho_a + rho_b), &p);
-                    }
-                }
-                for (int d = 0; d < 3; ++d)
-                    acc[d] += (pressure_term + visc_radial) * r_ab[d] + visc_scalar * u_visc[d];
+                real r_ab[3], r2;
+                if (b != a && grid_pair_within(&run, position, b, support * support, r_ab, &r2))
+                    fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure, mass,
+                                            gamma, liquid_fraction, kind, material, materials, &p, acc);
             }
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];

@@ -65,12 +65,15 @@ KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_r
     }
 }
 
-KERNEL void drift(GLOBAL const real *velocity, int n, real dt, GLOBAL real *position)
+/* r += dt v, except for grain particles, which move with their grain
+ * (grain_drift, kernels/grains.cl). */
+KERNEL void drift(GLOBAL const int *kind, GLOBAL const real *velocity, int n, real dt, GLOBAL real *position)
 {
     FOR_EACH_ITEM(i, n)
     {
-        for (int d = 0; d < AMSPH_DIM; ++d)
-            position[3 * i + d] += dt * velocity[3 * i + d];
+        if (kind[i] != KIND_GRAIN)
+            for (int d = 0; d < AMSPH_DIM; ++d)
+                position[3 * i + d] += dt * velocity[3 * i + d];
     }
 }
 

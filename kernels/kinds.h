@@ -5,4 +5,5 @@
 #define KIND_FLUID 0
 #define KIND_WALL 1
 #define KIND_SOLID 2
+#define KIND_GRAIN 3 /* a particle of a mobile rigid grain (kernels/grains.cl) */
 #endif

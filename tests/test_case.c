@@ -61,6 +61,15 @@ static void report(int ok, const char *test, const char *what)
     "  - kind: fluid\n"                                                                            \
     "    material: water\n"
 #define BASE2 HEAD2 MATS GEO_BOX
+/* for the grains module: a fluid section (line 8), a material with a sound
+ * speed (9-10), a grain block (11-12) */
+#define FLUID_MATS                                                                                 \
+    "fluid: {}\n"                                                                                   \
+    "materials:\n"                                                                                 \
+    "  - {name: water, density: 1000, sound_speed: 10}\n"
+#define GEO_GRAIN                                                                                  \
+    "geometry:\n"                                                                                  \
+    "  - {shape: box, kind: grain, material: water, min: [0.1, 0.1], max: [0.2, 0.2]}\n"
 #define HEAD3                                                                                      \
     "dimension: 3\n"                                                                               \
     "domain:\n"                                                                                    \
@@ -109,7 +118,7 @@ static const bad_case bad_cases[] = {
     {"unknown key without suggestion", BASE2 "colour: red\n",
      NAME ":17: unknown key 'colour' in top level (allowed: dimension, domain, dx, h_over_dx, "
           "kernel, end_time, output_interval, backend, device, gravity, fluid, thermal, surface, "
-          "laser, temperature_history, materials, geometry)"},
+          "grains, laser, temperature_history, materials, geometry)"},
     {"unknown key in domain",
      "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodc: "
      "[true, true]\n",
@@ -122,7 +131,7 @@ static const bad_case bad_cases[] = {
     {"long unknown key is cut", BASE2 "abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz: 1\n",
      NAME ":17: unknown key 'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...' in top level "
           "(allowed: dimension, domain, dx, h_over_dx, kernel, end_time, output_interval, "
-          "backend, device, gravity, fluid, thermal, surface, laser, temperature_history, "
+          "backend, device, gravity, fluid, thermal, surface, grains, laser, temperature_history, "
           "materials, geometry)"},
     {"key that is a list", BASE2 "[a]: 1\n",
      NAME ":17: keys in top level must be names, got a list"},
@@ -467,7 +476,21 @@ static const bad_case bad_cases[] = {
     {"backend cuda", BASE2 "backend: cuda\n",
      NAME ":17: 'backend' must be one of openmp, opencl; got 'cuda'"},
     {"kind gas", HEAD2 MATS "geometry:\n  - shape: box\n    kind: gas\n",
-     NAME ":13: 'geometry[0].kind' must be one of fluid, wall, solid; got 'gas'"},
+     NAME ":13: 'geometry[0].kind' must be one of fluid, wall, solid, grain; got 'gas'"},
+    {"grain block without grains", HEAD2 FLUID_MATS GEO_GRAIN,
+     NAME ":12: geometry[0] is of kind 'grain', which needs a 'grains:' section (with 'contact_stiffness')"},
+    {"grains without a grain block", HEAD2 FLUID_MATS GEO_BOX "grains: {contact_stiffness: 1}\n",
+     NAME ":17: 'grains' is set, but no geometry block is of kind 'grain'"},
+    {"grains without fluid", HEAD2 MATS GEO_GRAIN "grains: {contact_stiffness: 1}\n",
+     NAME ":13: 'grains' needs the fluid module (a 'fluid:' section)"},
+    {"grains without stiffness", HEAD2 FLUID_MATS GEO_GRAIN "grains: {contact_damping: 1}\n",
+     NAME ":13: missing required key 'contact_stiffness' in grains"},
+    {"negative contact damping", HEAD2 FLUID_MATS GEO_GRAIN "grains: {contact_stiffness: 1, contact_damping: -1}\n",
+     NAME ":13: 'grains.contact_damping' must be >= 0, got -1"},
+    {"grains on a periodic axis",
+     "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, 1]\n  periodic: [true, false]\n"
+     "dx: 0.01\nend_time: 1\noutput_interval: 0.1\n" FLUID_MATS GEO_GRAIN "grains: {contact_stiffness: 1}\n",
+     NAME ":14: 'grains' cannot be used with a periodic axis (x)"},
     {"shape is a list", HEAD2 MATS GEO_START "    shape: [box]\n",
      NAME ":14: 'geometry[0].shape' must be one of box, circle, sphere, cylinder, powder_bed; got a list"},
     {"sphere in 2D", HEAD2 MATS GEO_START "    shape: sphere\n",

@@ -1,0 +1,130 @@
+/* The pressure and viscous acceleration of one fluid particle a by one
+ * neighbour b, shared by the fluid forces (kernels/fluid.cl) and the
+ * coupling forces on rigid grains (kernels/grains.cl), which take the
+ * reaction -m_a a_ab of every fluid neighbour a (Fuchs et al. 2022
+ * Sec. 3.4.2), so that the exchange conserves momentum exactly. */
+#ifndef AMSPH_FLUID_PAIR_H
+#define AMSPH_FLUID_PAIR_H
+
+#include "device.h"
+#include "fluid_params.h"
+#include "kinds.h"
+#include "materials.h"
+#include "smoothing.h"
+#include "vec3.h"
+
+/* Laminar viscosity (Morris, Fox & Zhu 1997 Eq. 8) with the harmonic mean
+ * 2 mu_a mu_b / (mu_a + mu_b) in place of (mu_a + mu_b) / 2 (Russell 2018
+ * Eq. 3.18) for unequal viscosities:
+ *   a_a += sum_b m_b 4 mu_a mu_b / (mu_a + mu_b) / (rho_a rho_b)
+ *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab  */
+static inline real laminar_viscosity_factor(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
+                                            real r_dot_grad, real r2, const fluid_params *p)
+{
+    const real mu_sum = mu_a + mu_b;
+    const real mu_ab = mu_sum > REAL(0.0) ? REAL(4.0) * mu_a * mu_b / mu_sum : REAL(0.0);
+    return m_b * mu_ab / (rho_a * rho_b) * r_dot_grad / (r2 + p->eta2);
+}
+
+/* Monaghan (1992) artificial viscosity, for approaching pairs:
+ *   Pi_ab = -alpha c h (u_ab . r_ab) / (rho_mean (r_ab^2 + eta^2)),  a_a -= m_b Pi_ab grad_a W_ab */
+static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real rho_mean,
+                                        const fluid_params *p)
+{
+    if (u_dot_r >= REAL(0.0))
+        return REAL(0.0);
+    return -p->artificial_alpha * c_mean * p->h * u_dot_r / (rho_mean * (r2 + p->eta2));
+}
+
+/* Monaghan (2000) artificial pressure against the tensile instability.
+ * Particles under tension (p below the background pressure p_bg) attract
+ * each other, and the continuity density does not stop two of them closing
+ * up: in the 2D dam break, thin films along the walls pair up to 0.3 dx at
+ * negative pressures of a few hundred Pa. A short-range repulsion for the
+ * tensile part of the pair's pressures,
+ *   a_a -= m_b R (W_ab / W(dx))^4 grad_a W_ab,
+ *   R = eps (max(p_bg - p_a, 0) / rho_a^2 + max(p_bg - p_b, 0) / rho_b^2),
+ * returned as the factor of r_ab. Between fluid particles only (against a
+ * wall it pushes a film under tension off the wall, lowering its density).
+ * Keep eps small: at 0.15 and above the dam break's film along the left wall
+ * runs away in tension (density guard); 0.05 to 0.1 runs. */
+static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b, real m_b, real r,
+                                      real f, const fluid_params *p)
+{
+    const real tension_a = fmax(p->background_pressure - p_a, REAL(0.0));
+    const real tension_b = fmax(p->background_pressure - p_b, REAL(0.0));
+    const real big_r = p->tensile_correction * (tension_a / (rho_a * rho_a) + tension_b / (rho_b * rho_b));
+    const real fw = smoothing_w(r, p->h) / smoothing_w(p->dx, p->h);
+    const real fw2 = fw * fw;
+    return -m_b * big_r * fw2 * fw2 * f;
+}
+
+/* What the pair force needs of particle a, the fluid particle it acts on. */
+typedef struct {
+    real rho, p, mu, c, gamma;
+    real u[3];
+} fluid_pair_side;
+
+static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *velocity,
+                                                 GLOBAL const real *density, GLOBAL const real *pressure,
+                                                 GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
+                                                 GLOBAL const int *material, GLOBAL const real *materials,
+                                                 const fluid_params *p)
+{
+    fluid_pair_side s;
+    s.rho = density[a];
+    s.p = pressure[a];
+    s.mu = particle_viscosity(materials, material[a], liquid_fraction[a]);
+    s.c = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
+    s.gamma = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
+    for (int d = 0; d < 3; ++d)
+        s.u[d] = velocity[3 * a + d];
+    return s;
+}
+
+/* Acceleration of fluid particle a (its side s_a) by neighbour b at r_ab =
+ * r_a - r_b, 0 < |r_ab| < support, added to acc. Pressure gradient (Russell
+ * 2018 Eq. 3.17):
+ *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
+ *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
+ * plus, if set, the tensile correction (above). The viscosity follows the
+ * liquid fraction through the mushy zone (materials.h). Walls, solids and
+ * grains enter with their Adami state; viscosity sees their ghost velocity
+ * (no-slip) or nothing (free-slip). */
+static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, const real r_ab[3], real r2,
+                                           GLOBAL const real *velocity, GLOBAL const real *wall_velocity,
+                                           GLOBAL const real *density, GLOBAL const real *pressure,
+                                           GLOBAL const real *mass, GLOBAL const real *gamma,
+                                           GLOBAL const real *liquid_fraction, GLOBAL const int *kind,
+                                           GLOBAL const int *material, GLOBAL const real *materials,
+                                           const fluid_params *p, real acc[3])
+{
+    const real f = smoothing_grad_factor(sqrt(r2), p->h); /* grad_a W_ab = f r_ab */
+    const int fluid_b = kind[b] == KIND_FLUID;
+    const int mat_b = material[b];
+    const real rho_b = density[b], m_b = mass[b];
+    const real gamma_b = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[b] : REAL(1.0);
+    real pressure_term = -m_b / (s_a->rho * rho_b) * (pressure[b] / s_a->gamma + s_a->p / gamma_b) * f;
+    if (fluid_b && p->tensile_correction > REAL(0.0))
+        pressure_term += tensile_correction(s_a->p, pressure[b], s_a->rho, rho_b, m_b, sqrt(r2), f, p);
+    real u_visc[3];
+    for (int d = 0; d < 3; ++d)
+        u_visc[d] = s_a->u[d] - (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);
+    real visc_scalar = REAL(0.0); /* multiplies u_visc */
+    real visc_radial = REAL(0.0); /* multiplies r_ab */
+    if (fluid_b || p->wall_slip == WALL_NO_SLIP) {
+        if (p->viscosity == VISCOSITY_LAMINAR) {
+            const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
+            visc_scalar = laminar_viscosity_factor(s_a->mu, mu_b, m_b, s_a->rho, rho_b, f * r2, r2, p);
+        } else {
+            const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
+            visc_radial = -m_b * f *
+                          artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (s_a->c + c_b),
+                                               REAL(0.5) * (s_a->rho + rho_b), p);
+        }
+    }
+    for (int d = 0; d < 3; ++d)
+        acc[d] += (pressure_term + visc_radial) * r_ab[d] + visc_scalar * u_visc[d];
+}
+
+#endif

@@ -1,0 +1,326 @@
+/* Mobile powder grains (host/grains.h, kernels/grains.cl; Fuchs et al. 2022
+ * §2.2, §3.4), each against an answer known without the program:
+ *   bounce  a flat 2D grain (10 x 5 particles) falls onto a wall. Only the
+ *           10 particles of its bottom row touch (each the wall particle
+ *           right below it; the diagonal ones stay beyond dx), so the
+ *           contact is N = 10 springs and dashpots in parallel and the
+ *           grain a mass on them: M d'' = -N (k_c d + d_c d') while that
+ *           pushes (Fuchs Eqs. 39-40, d the overlap). Without damping the
+ *           grain leaves at the speed it came (1%); with damping at the
+ *           speed that ODE gives (integrated here by RK4), within 2%; and
+ *           it comes to rest with the overlap M g / (N k_c) (2%), level.
+ *           Both backends agree.
+ *   spin    a free grain set spinning and drifting (no gravity, nothing
+ *           near) keeps its shape and turns at the angular velocity it got:
+ *           after a sixth of a turn every particle lies within 1e-3 dx of
+ *           the exact rigid motion of its start.
+ *   buoyancy a square of density 500 and one of 2000 held in water at
+ *           hydrostatic rest feel the net force (rho_water - rho) V g, V
+ *           their particles' volume, within 5%, and start to rise and sink.
+ *   melt    a spinning grain of a melting material flies beside a hot drop
+ *           of its own melt (no gravity, no walls): it melts in part, and
+ *           across the transfer of particles to the fluid the mass is
+ *           exact, the momentum of grain and fluid holds to 1e-5, and the
+ *           grain's kinetic energy equals that of the particles it keeps
+ *           (1e-5), as Eq. 37 requires.
+ * `test_grains PART` runs one part; ctest runs each alone. */
+#include <math.h>
+#include <string.h>
+
+#include "grains.h"
+#include "sim.h"
+#include "testing.h"
+#include "thermal.h"
+
+static int parse(const char *text, const char *name, amsph_case *c)
+{
+    char err[1024];
+    const int status = amsph_case_parse(text, strlen(text), name, c, err, sizeof err);
+    CHECK(status == 0, "%s", err);
+    return status;
+}
+
+static void grain_record(amsph_sim *s, int k, amsph_real rec[GRAIN_RECORD])
+{
+    amsph_real all[4 * GRAIN_RECORD];
+    if (s->grains.count > 4 || amsph_grains_download(s, all)) {
+        CHECK(0, "%d grains: %s", s->grains.count, amsph_last_error());
+        return;
+    }
+    memcpy(rec, all + GRAIN_RECORD * k, GRAIN_RECORD * sizeof(amsph_real));
+}
+
+/* ---- bounce ------------------------------------------------------------- */
+
+#define BOUNCE_DX 0.01
+#define BOUNCE_N 10     /* particles in the bottom row */
+#define BOUNCE_ROWS 5
+#define BOUNCE_RHO 1000.0
+#define BOUNCE_G 9.81
+#define BOUNCE_DROP 0.02 /* free fall before the contact, m */
+
+static double bounce_mass(void)
+{
+    return BOUNCE_RHO * BOUNCE_DX * BOUNCE_DX * BOUNCE_N * BOUNCE_ROWS;
+}
+
+/* k_c for a resting overlap of dx / 10. */
+static double bounce_stiffness(void)
+{
+    return bounce_mass() * BOUNCE_G / (BOUNCE_N * 0.1 * BOUNCE_DX);
+}
+
+static int bounce_case(double damping, amsph_case *c)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "dimension: 2\n"
+             "domain: {min: [-0.05, -0.05], max: [0.35, 0.2]}\n"
+             "dx: %g\nend_time: 1.0\noutput_interval: 0.1\n"
+             "gravity: [0, %g]\n"
+             "fluid: {}\n"
+             "grains: {contact_stiffness: %.17g, contact_damping: %.17g}\n"
+             "materials:\n"
+             "  - {name: m, density: %g, sound_speed: 1}\n"
+             "geometry:\n"
+             "  - {shape: box, kind: wall, material: m, min: [0, 0], max: [0.3, 0.15], layers: 3, open: [+y]}\n"
+             "  - {shape: box, kind: grain, material: m, min: [0.1, %g], max: [0.2, %g]}\n",
+             BOUNCE_DX, -BOUNCE_G, bounce_stiffness(), damping, BOUNCE_RHO, BOUNCE_DROP,
+             BOUNCE_DROP + BOUNCE_ROWS * BOUNCE_DX);
+    return parse(text, "bounce.yaml", c);
+}
+
+/* The fastest rise of the grain of the ODE above, with gravity, from the
+ * contact it meets at v_in (RK4 on d'' = g - (N/M)(k d + c d') while the
+ * force pushes; after it lets go, gravity only slows the grain). */
+static double model_rebound(double v_in, double damping)
+{
+    const double a = BOUNCE_N / bounce_mass(), k = bounce_stiffness();
+    double d = 0.0, v = v_in, fastest = 0.0; /* overlap and its rate */
+    const double dt = 1e-6;
+    do {
+        double kd[4], kv[4], dd = d, vv = v;
+        for (int stage = 0; stage < 4; ++stage) {
+            kd[stage] = vv;
+            kv[stage] = BOUNCE_G - a * (k * dd + damping * vv);
+            const double w = stage < 2 ? 0.5 : 1.0;
+            dd = d + w * dt * kd[stage];
+            vv = v + w * dt * kv[stage];
+        }
+        d += dt / 6.0 * (kd[0] + 2 * kd[1] + 2 * kd[2] + kd[3]);
+        v += dt / 6.0 * (kv[0] + 2 * kv[1] + 2 * kv[2] + kv[3]);
+        fastest = fmax(fastest, -v);
+    } while (k * d + damping * v > 0.0);
+    return fastest;
+}
+
+typedef struct {
+    double impact, rebound; /* fastest fall and rise, m/s */
+    double overlap;         /* at rest at the end, m */
+    double tilt;            /* spin at the end, rad/s */
+} bounce_result;
+
+static int track_bounce(void *context, const amsph_sim *s)
+{
+    bounce_result *r = context;
+    amsph_real rec[GRAIN_RECORD] = {0};
+    grain_record((amsph_sim *)s, 0, rec);
+    r->impact = fmax(r->impact, -rec[GRAIN_VELOCITY + 1]);
+    r->rebound = fmax(r->rebound, rec[GRAIN_VELOCITY + 1]);
+    return 0;
+}
+
+static bounce_result run_bounce(int backend, double damping, double end)
+{
+    bounce_result r = {0};
+    amsph_case c;
+    amsph_backend *b = testing_backend(backend);
+    if (!b || bounce_case(damping, &c))
+        return r;
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_advance(&s, end, track_bounce, &r));
+    amsph_real rec[GRAIN_RECORD];
+    grain_record(&s, 0, rec);
+    /* bottom row at centre - 2 dx; the wall's top row at -dx/2 */
+    const double bottom = rec[GRAIN_CENTRE + 1] - 0.5 * (BOUNCE_ROWS - 1) * BOUNCE_DX;
+    r.overlap = BOUNCE_DX - (bottom + 0.5 * BOUNCE_DX);
+    r.tilt = rec[GRAIN_SPIN + 2];
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+    return r;
+}
+
+static void test_bounce(void)
+{
+    const double fall = sqrt(2.0 * BOUNCE_G * BOUNCE_DROP);
+    const double rest = bounce_mass() * BOUNCE_G / (BOUNCE_N * bounce_stiffness());
+    /* undamped, the fall is fastest where the springs carry the weight, at
+     * the overlap `rest`: v^2 = fall^2 + 2 g rest - (N k / M) rest^2 */
+    const double fastest = sqrt(fall * fall + BOUNCE_G * rest);
+    const bounce_result elastic = run_bounce(0, 0.0, 0.2);
+    printf("elastic: fastest fall %.5f m/s (energy: %.5f), rise %.5f\n", elastic.impact, fastest, elastic.rebound);
+    CHECK(fabs(elastic.impact - fastest) < 0.01 * fastest, "fastest fall %g m/s, energy gives %g", elastic.impact,
+          fastest);
+    CHECK(fabs(elastic.rebound - elastic.impact) < 0.01 * elastic.impact,
+          "undamped contact: rebound %g m/s after impact %g", elastic.rebound, elastic.impact);
+    /* damping ratio 0.2 of the N springs on the mass */
+    const double damping = 0.2 * 2.0 * sqrt(bounce_stiffness() * bounce_mass() / BOUNCE_N);
+    double first_rebound = 0.0;
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        const bounce_result damped = run_bounce(k, damping, 1.0);
+        if (damped.impact == 0.0)
+            continue;
+        if (k == 0)
+            first_rebound = damped.rebound;
+        else
+            CHECK(fabs(damped.rebound - first_rebound) < 1e-4 * first_rebound,
+                  "backends disagree: rebound %g against %g m/s", damped.rebound, first_rebound);
+        const double expected = model_rebound(fall, damping);
+        printf("backend %d, damped: impact %.5f, rebound %.5f (model %.5f), overlap at rest %.4g m "
+               "(%.4g), spin %.2g rad/s\n",
+               k, damped.impact, damped.rebound, expected, damped.overlap, rest, damped.tilt);
+        CHECK(fabs(damped.rebound - expected) < 0.02 * expected, "damped rebound %g m/s, the ODE gives %g",
+              damped.rebound, expected);
+        CHECK(fabs(damped.overlap - rest) < 0.02 * rest, "overlap at rest %g m, M g / (N k) = %g",
+              damped.overlap, rest);
+        CHECK(fabs(damped.tilt) < 1e-6, "the level grain turned at %g rad/s", damped.tilt);
+    }
+}
+
+/* ---- spin --------------------------------------------------------------- */
+
+#define SPIN_OMEGA 2.0 /* rad/s */
+
+static void test_spin(void)
+{
+    static const char text[] =
+        "dimension: 2\n"
+        "domain: {min: [-0.5, -0.5], max: [0.5, 0.5]}\n"
+        "dx: 0.01\nend_time: 1.0\noutput_interval: 0.1\n"
+        "fluid: {}\n"
+        "grains: {contact_stiffness: 1}\n"
+        "materials:\n"
+        "  - {name: m, density: 1000, sound_speed: 1}\n"
+        "geometry:\n"
+        "  - {shape: box, kind: grain, material: m, min: [-0.04, -0.03], max: [0.04, 0.03], velocity: [0.1, 0.05]}\n";
+    amsph_case c;
+    amsph_backend *b = testing_backend(0);
+    if (!b || parse(text, "spin.yaml", &c))
+        return;
+    amsph_sim s;
+    amsph_host_particles start = {0}, end = {0};
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_particles_download(&s.particles, &start));
+    /* set it spinning about its centre (0, 0) */
+    amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION), *u = amsph_host_real(&start, AMSPH_FIELD_VELOCITY);
+    for (int i = 0; i < start.n; ++i) {
+        u[3 * i + 0] = (amsph_real)(0.1 - SPIN_OMEGA * x[3 * i + 1]);
+        u[3 * i + 1] = (amsph_real)(0.05 + SPIN_OMEGA * x[3 * i + 0]);
+    }
+    CHECK_OK(amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0,
+                          (size_t)start.n * 3 * sizeof(amsph_real), u));
+    CHECK_OK(amsph_grains_recover(&s));
+    amsph_real rec[GRAIN_RECORD];
+    grain_record(&s, 0, rec);
+    CHECK(fabs(rec[GRAIN_SPIN + 2] - SPIN_OMEGA) < 1e-5 * SPIN_OMEGA, "recovered spin %g rad/s, set %g",
+          rec[GRAIN_SPIN + 2], SPIN_OMEGA);
+    const double t = acos(0.5) / SPIN_OMEGA; /* a sixth of a turn */
+    CHECK_OK(amsph_sim_advance(&s, t, NULL, NULL));
+    CHECK_OK(amsph_particles_download(&s.particles, &end));
+    const unsigned *id0 = start.data[AMSPH_FIELD_ID], *id1 = end.data[AMSPH_FIELD_ID];
+    const amsph_real *y = amsph_host_real(&end, AMSPH_FIELD_POSITION);
+    const double turn = SPIN_OMEGA * s.time, cs = cos(turn), sn = sin(turn);
+    double worst = 0.0;
+    for (int j = 0; j < end.n; ++j)
+        for (int i = 0; i < start.n; ++i)
+            if (id0[i] == id1[j]) {
+                const double ex = 0.1 * s.time + cs * x[3 * i] - sn * x[3 * i + 1];
+                const double ey = 0.05 * s.time + sn * x[3 * i] + cs * x[3 * i + 1];
+                worst = fmax(worst, hypot(y[3 * j] - ex, y[3 * j + 1] - ey));
+            }
+    printf("spin: %d particles turned %.3f rad in %lld steps; largest departure from the rigid motion %.3g dx\n",
+           end.n, turn, s.step, worst / c.dx);
+    CHECK(end.n == start.n, "%d of %d particles left", end.n, start.n);
+    CHECK(worst < 1e-3 * c.dx, "a particle strayed %g dx from the rigid motion", worst / c.dx);
+    amsph_host_free(&start);
+    amsph_host_free(&end);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
+/* ---- buoyancy ----------------------------------------------------------- */
+
+/* Water at hydrostatic rest, built around two square grains (0.1 m sides,
+ * 100 particles each): grain 0 of density 500 at x 0.1-0.2, grain 1 of
+ * density 2000 at x 0.25-0.35, both at y 0.1-0.2 under 0.2 m of water.
+ * The quintic kernel: with Wendland C2 at h = 1.2 dx the lattice's first
+ * moment makes the initial pressure gradient 6% short of rho g (the fluid
+ * then settles to the discrete balance), and the force on a grain at t = 0
+ * with it; the quintic's is 1% short. A wall or grain particle's volume
+ * follows its pressure through its own equation of state (kernels/fluid.cl
+ * wall_state), so the grains have the water's bulk modulus rho0 c0^2. */
+static const char buoyancy_text[] =
+    "dimension: 2\n"
+    "domain: {min: [-0.05, -0.05], max: [0.45, 0.6]}\n"
+    "dx: 0.01\nkernel: quintic\nend_time: 0.05\noutput_interval: 0.05\n"
+    "gravity: [0, -9.81]\n"
+    "fluid: {density_diffusion: fourtakas, viscosity: artificial, artificial_alpha: 0.1}\n"
+    "grains: {contact_stiffness: 1e4}\n"
+    "materials:\n"
+    "  - {name: water, density: 1000, sound_speed: 20}\n"
+    "  - {name: light, density: 500, sound_speed: 28.2843}\n"
+    "  - {name: heavy, density: 2000, sound_speed: 14.1421}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: wall, material: water, min: [0, 0], max: [0.4, 0.5], layers: 3, open: [+y]}\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.4, 0.1], hydrostatic: true}\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0, 0.1], max: [0.1, 0.2], hydrostatic: true}\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0.2, 0.1], max: [0.25, 0.2], hydrostatic: true}\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0.35, 0.1], max: [0.4, 0.2], hydrostatic: true}\n"
+    "  - {shape: box, kind: fluid, material: water, min: [0, 0.2], max: [0.4, 0.4], hydrostatic: true}\n"
+    "  - {shape: box, kind: grain, material: light, min: [0.1, 0.1], max: [0.2, 0.2], hydrostatic: true}\n"
+    "  - {shape: box, kind: grain, material: heavy, min: [0.25, 0.1], max: [0.35, 0.2], hydrostatic: true}\n";
+
+static void test_buoyancy(void)
+{
+    amsph_case c;
+    amsph_backend *b = testing_backend(0);
+    if (!b || parse(buoyancy_text, "buoyancy.yaml", &c))
+        return;
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    static const double density[2] = {500.0, 2000.0};
+    const double volume = 0.01;
+    for (int k = 0; k < 2; ++k) {
+        amsph_real rec[GRAIN_RECORD];
+        grain_record(&s, k, rec);
+        const double expected = (1000.0 - density[k]) * volume * 9.81;
+        printf("grain of density %g at rest in water: net force %.4g N/m (buoyancy less weight %.4g), "
+               "sideways %.2g\n",
+               density[k], rec[GRAIN_FORCE + 1], expected, rec[GRAIN_FORCE]);
+        CHECK(fabs(rec[GRAIN_FORCE + 1] - expected) < 0.05 * fabs(expected), "net force %g N/m, expected %g",
+              rec[GRAIN_FORCE + 1], expected);
+    }
+    CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
+    amsph_real light[GRAIN_RECORD], heavy[GRAIN_RECORD];
+    grain_record(&s, 0, light);
+    grain_record(&s, 1, heavy);
+    printf("after %g s: the light grain moves at %.3g m/s, the heavy one at %.3g m/s\n", s.time,
+           light[GRAIN_VELOCITY + 1], heavy[GRAIN_VELOCITY + 1]);
+    CHECK(light[GRAIN_VELOCITY + 1] > 0.0, "the light grain does not rise: %g m/s", light[GRAIN_VELOCITY + 1]);
+    CHECK(heavy[GRAIN_VELOCITY + 1] < 0.0, "the heavy grain does not sink: %g m/s", heavy[GRAIN_VELOCITY + 1]);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
+int main(int argc, char **argv)
+{
+    const char *part = argc > 1 ? argv[1] : "all";
+    if (!strcmp(part, "bounce") || !strcmp(part, "all"))
+        test_bounce();
+    if (!strcmp(part, "spin") || !strcmp(part, "all"))
+        test_spin();
+    if (!strcmp(part, "buoyancy") || !strcmp(part, "all"))
+        test_buoyancy();
+    return testing_finish();
+}
