@@ -285,16 +285,20 @@ KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nc
         GLOBAL real *rec = grains + GRAIN_RECORD * k;
         const int begin = k == 0 ? 0 : offset[k * nchunks - 1];
         const int end = offset[(k + 1) * nchunks - 1];
-        real m = REAL(0.0), first[3], moment[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        /* sums of departures from the grain's last centre and velocity,
+         * which are small and of either sign, so that rounding does not
+         * build up into a drift of the centre or the momentum */
+        real centre_before[3], velocity_before[3];
+        grain_vector(grains, k, GRAIN_CENTRE, centre_before);
+        grain_vector(grains, k, GRAIN_VELOCITY, velocity_before);
+        real m = REAL(0.0), moment[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real momentum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        /* positions relative to the first particle, for the precision of the sums */
-        grid_point(position, end > begin ? order[begin] : 0, first);
         for (int j = begin; j < end; ++j) {
             const int r = order[j];
             m += mass[r];
             for (int d = 0; d < 3; ++d) {
-                moment[d] += mass[r] * (position[3 * r + d] - first[d]);
-                momentum[d] += mass[r] * velocity[3 * r + d];
+                moment[d] += mass[r] * (position[3 * r + d] - centre_before[d]);
+                momentum[d] += mass[r] * (velocity[3 * r + d] - velocity_before[d]);
                 force[d] += mass[r] * acceleration[3 * r + d];
             }
         }
@@ -304,7 +308,7 @@ KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nc
         if (m > REAL(0.0)) {
             real centre[3];
             for (int d = 0; d < 3; ++d)
-                centre[d] = first[d] + moment[d] / m;
+                centre[d] = centre_before[d] + moment[d] / m;
             real i6[6] = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0)};
             real torque[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, spin_momentum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real point_i6[6] = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0)};
@@ -335,7 +339,7 @@ KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nc
             rec[GRAIN_MASS] = m;
             for (int d = 0; d < 3; ++d) {
                 rec[GRAIN_CENTRE + d] = centre[d];
-                rec[GRAIN_VELOCITY + d] = momentum[d] / m;
+                rec[GRAIN_VELOCITY + d] = velocity_before[d] + momentum[d] / m;
                 rec[GRAIN_FORCE + d] = force[d];
                 rec[GRAIN_TORQUE + d] = torque[d];
                 rec[GRAIN_ANGULAR_MOMENTUM + d] = spin_momentum[d];
