@@ -49,7 +49,10 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
  * rho0_w and c0 are the wall's own (its material at its temperature), so
  * that its volume m_w / rho_w stays dx^d next to fluids of any rho0.
  * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
- * pressure would glue separating fluid to it and draw particles into it. */
+ * pressure would glue separating fluid to it and draw particles into it.
+ * In the multiphase form (a gas fills the space, nothing separates from a
+ * wall) p_w is only kept >= 0: the top of a gas column at rest sits at
+ * p_b less its weight, and a wall held at p_b would push it down. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        GLOBAL const real *reference_density, int n, grid_geometry g,
@@ -86,9 +89,10 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             }
             const real rho0 = reference_density[a];
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
+            const real floor_w = p.pressure_gradient == PRESSURE_MULTIPHASE ? REAL(0.0) : p.background_pressure;
             real p_w = p.background_pressure;
             if (sum_w > REAL(0.0))
-                p_w = fmax(p_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
+                p_w = fmax(floor_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
             pressure[a] = p_w;
             density[a] = rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
@@ -114,17 +118,76 @@ static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, r
     return REAL(2.0) * (q_a - q_b) * r_dot_grad / (r2 + p->eta2) * v_b;
 }
 
+/* The volume weight w_ab of one pair in the pressure and laminar viscous
+ * forces, as a numerator and a denominator (kept apart so that the
+ * single-phase forms round as they always did):
+ *   renormalised, symmetric: w_ab = m_b / (rho_a rho_b)        (Russell 2018 Eqs. 3.17, 3.18)
+ *   multiphase:              w_ab = (V_a^2 + V_b^2) / (2 m_a)  (Fuchs et al. 2022 Eq. 23,
+ *                            after Adami, Hu & Adams 2012; V = m / rho),
+ * equal for a pair of equal particles; the multiphase one weighs a light gas
+ * particle next to a heavy liquid one by the volumes, not by the masses. */
+typedef struct {
+    real num, den;
+} pair_weight;
+
+static inline pair_weight pair_weight_of(int form, real m_a, real m_b, real rho_a, real rho_b)
+{
+    pair_weight w;
+    if (form == PRESSURE_MULTIPHASE) {
+        const real v_a = m_a / rho_a, v_b = m_b / rho_b;
+        w.num = v_a * v_a + v_b * v_b;
+        w.den = REAL(2.0) * m_a;
+    } else {
+        w.num = m_b;
+        w.den = rho_a * rho_b;
+    }
+    return w;
+}
+
+/* The pair's pressure sum P_ab of the pressure force
+ *   a_a = -sum_b w_ab P_ab grad_a W_ab:
+ *   renormalised: p_b / Gamma_a + p_a / Gamma_b                   (Russell 2018 Eq. 3.17)
+ *   symmetric:    p_a + p_b                (the Gammas are 1 here)
+ *   multiphase:   2 (rho_b p_a + rho_a p_b) / (rho_a + rho_b)      (Fuchs et al. 2022 Eq. 23:
+ *                 twice the density-weighted inter-particle pressure, continuous across a
+ *                 density jump); a wall or solid b enters with rho_b = rho_a, so that it
+ *                 holds a gas with its Adami pressure as it holds a liquid (with its own
+ *                 density, a wall 100 times denser than a gas would show the gas its own
+ *                 pressure back) */
+static inline real pair_pressure_sum(int form, real p_a, real p_b, real rho_a, real rho_b, real gamma_a,
+                                     real gamma_b)
+{
+    if (form == PRESSURE_MULTIPHASE)
+        return REAL(2.0) * (rho_b * p_a + rho_a * p_b) / (rho_a + rho_b);
+    return p_b / gamma_a + p_a / gamma_b;
+}
+
 /* Laminar viscosity (Morris, Fox & Zhu 1997 Eq. 8) with the harmonic mean
  * 2 mu_a mu_b / (mu_a + mu_b) in place of (mu_a + mu_b) / 2 (Russell 2018
  * Eq. 3.18) for unequal viscosities:
- *   a_a += sum_b m_b 4 mu_a mu_b / (mu_a + mu_b) / (rho_a rho_b)
- *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab  */
-static inline real laminar_viscosity_factor(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
-                                            real r_dot_grad, real r2, const fluid_params *p)
+ *   a_a += sum_b w_ab 4 mu_a mu_b / (mu_a + mu_b)
+ *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab,
+ * w_ab = m_b / (rho_a rho_b), or in the multiphase form (V_a^2 + V_b^2) / (2 m_a),
+ * which makes it the viscous term of Fuchs et al. 2022 Eq. 23 (pair_weight_of). */
+static inline real laminar_viscosity_factor(real mu_a, real mu_b, pair_weight w, real r_dot_grad,
+                                            real r2, const fluid_params *p)
 {
     const real mu_sum = mu_a + mu_b;
     const real mu_ab = mu_sum > REAL(0.0) ? REAL(4.0) * mu_a * mu_b / mu_sum : REAL(0.0);
-    return m_b * mu_ab / (rho_a * rho_b) * r_dot_grad / (r2 + p->eta2);
+    return w.num * mu_ab / w.den * r_dot_grad / (r2 + p->eta2);
+}
+
+/* Barrier force of a pair closer than r_b (Fuchs et al. 2022 Eq. 34):
+ *   F_a = sum_b (k_b g + d_b |g| dg/dt) e_ab,  g = r_b - r,  dg/dt = -e_ab . u_ab,
+ * e_ab = r_ab / r, for r < r_b (else 0); a_a = F_a / m_a. Returned as the
+ * factor of r_ab; off (0) without a barrier (k_b = 0). */
+static inline real barrier_factor(real r, real u_dot_r, real m_a, const fluid_params *p)
+{
+    if (!(r < p->barrier_distance) || r <= REAL(0.0))
+        return REAL(0.0);
+    const real g = p->barrier_distance - r;
+    const real g_rate = -u_dot_r / r;
+    return (p->barrier_stiffness * g + p->barrier_damping * g * g_rate) / (m_a * r);
 }
 
 /* Monaghan (1992) artificial viscosity, for approaching pairs:
@@ -160,13 +223,22 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
     return -m_b * big_r * fw2 * fw2 * f;
 }
 
+/* Are two materials of the same phase (both gas, or both not)? Density
+ * diffusion acts within a phase: across a liquid-gas interface the
+ * departures rho - rho0 of equal pressures differ by the ratio of the
+ * phases' c0^2, and diffusing them would carry mass across it. */
+static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
+{
+    return material_is_gas(materials, mat_a) == material_is_gas(materials, mat_b);
+}
+
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
  * velocity, so that the density advances like a position (see
  * kernels/integrate.cl):
  *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
  *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
  * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
- * between fluid particles only. closest[a] is the distance to the nearest
+ * between fluid particles of the same phase only. closest[a] is the distance to the nearest
  * other particle, for the guards. Gamma is computed for every particle,
  * the rates for fluid particles. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
@@ -207,7 +279,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                 for (int d = 0; d < 3; ++d)
                     u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
                 drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
-                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE) {
+                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE &&
+                    same_phase(materials, mat_a, material[b])) {
                     const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
                     real dq = q_a - q_b;
                     if (p.density_diffusion == DIFFUSION_FOURTAKAS) {
@@ -230,10 +303,15 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
 }
 
 /* Acceleration of the fluid particles: gravity + pressure gradient +
- * viscosity. Pressure gradient (Russell 2018 Eq. 3.17):
+ * viscosity + barrier. Pressure gradient a_a = -sum_b w_ab P_ab grad_a W_ab
+ * (pair_weight_of, pair_pressure_sum):
  *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
+ *                 (Russell 2018 Eq. 3.17)
  *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
- * plus, if set, the tensile correction (above). The viscosity follows the
+ *   multiphase:   a_a = -(1/m_a) sum_b (V_a^2 + V_b^2) (rho_b p_a + rho_a p_b) / (rho_a + rho_b)
+ *                 grad_a W_ab, with the laminar viscosity in the same weights
+ *                 (Fuchs et al. 2022 Eq. 23)
+ * plus, if set, the tensile correction (above) and the barrier force. The viscosity follows the
  * liquid fraction through the mushy zone (materials.h). Walls enter with their Adami
  * state; viscosity sees their ghost velocity (no-slip) or nothing (free-slip). */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
@@ -260,6 +338,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             const real c_a = material_value(materials, mat_a, MATERIAL_SOUND_SPEED);
             const int renormalised = p.pressure_gradient == PRESSURE_RENORMALISED;
             const real gamma_a = renormalised ? gamma[a] : REAL(1.0);
+            const real m_a = mass[a];
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3];
@@ -272,8 +351,10 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                 const int mat_b = material[b];
                 const real rho_b = density[b], m_b = mass[b];
                 const real gamma_b = renormalised ? gamma[b] : REAL(1.0);
+                const pair_weight w = pair_weight_of(p.pressure_gradient, m_a, m_b, rho_a, rho_b);
                 real pressure_term =
-                    -m_b / (rho_a * rho_b) * (pressure[b] / gamma_a + p_a / gamma_b) * f;
+                    -w.num / w.den *
+                    pair_pressure_sum(p.pressure_gradient, p_a, pressure[b], rho_a, fluid_b ? rho_b : rho_a, gamma_a, gamma_b) * f;
                 if (fluid_b && p.tensile_correction > REAL(0.0))
                     pressure_term += tensile_correction(p_a, pressure[b], rho_a, rho_b, m_b, sqrt(r2), f, &p);
                 real u_visc[3];
@@ -285,7 +366,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                 if (fluid_b || p.wall_slip == WALL_NO_SLIP) {
                     if (p.viscosity == VISCOSITY_LAMINAR) {
                         const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
-                        visc_scalar = laminar_viscosity_factor(mu_a, mu_b, m_b, rho_a, rho_b, f * r2, r2, &p);
+                        visc_scalar = laminar_viscosity_factor(mu_a, mu_b, w, f * r2, r2, &p);
                     } else {
                         const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
                         visc_radial = -m_b * f *
@@ -293,8 +374,15 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                                                            REAL(0.5) * (rho_a + rho_b), &p);
                     }
                 }
+                real barrier = REAL(0.0); /* multiplies r_ab */
+                if (p.barrier_stiffness > REAL(0.0)) {
+                    real u_ab[3];
+                    for (int d = 0; d < 3; ++d)
+                        u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
+                    barrier = barrier_factor(sqrt(r2), dot3(u_ab, r_ab), m_a, &p);
+                }
                 for (int d = 0; d < 3; ++d)
-                    acc[d] += (pressure_term + visc_radial) * r_ab[d] + visc_scalar * u_visc[d];
+                    acc[d] += (pressure_term + visc_radial + barrier) * r_ab[d] + visc_scalar * u_visc[d];
             }
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];
