@@ -45,6 +45,7 @@ _Static_assert(sizeof(amsph_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_absorption) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_material_preset) == sizeof(int), "enum size");
 _Static_assert(sizeof(amsph_history_form) == sizeof(int), "enum size");
+_Static_assert(sizeof(amsph_material_phase) == sizeof(int), "enum size");
 
 /* ---- schema ------------------------------------------------------------ */
 
@@ -52,6 +53,7 @@ typedef enum {
     SEC_TOP,
     SEC_DOMAIN,
     SEC_FLUID,
+    SEC_BARRIER,
     SEC_THERMAL,
     SEC_SURFACE,
     SEC_LASER,
@@ -64,7 +66,7 @@ typedef enum {
 
 /* How each section is named in the key reference. */
 static const char *const section_prefix[] = {
-    "",       "domain.",       "fluid.",       "thermal.", "surface.", "laser.", "laser.path[].",
+    "",       "domain.",       "fluid.",       "fluid.barrier.", "thermal.", "surface.", "laser.", "laser.path[].",
     "temperature_history.", "grains.", "materials[].", "geometry[]."};
 
 typedef enum {
@@ -131,6 +133,7 @@ static const choice diffusion_choices[] = {{"none", DIFFUSION_NONE, 0},
                                            {NULL, 0, 0}};
 static const choice pressure_choices[] = {{"renormalised", PRESSURE_RENORMALISED, 0},
                                           {"symmetric", PRESSURE_SYMMETRIC, 0},
+                                          {"multiphase", PRESSURE_MULTIPHASE, 0},
                                           {NULL, 0, 0}};
 static const choice viscosity_choices[] = {{"laminar", VISCOSITY_LAMINAR, 0},
                                            {"artificial", VISCOSITY_ARTIFICIAL, 0},
@@ -146,6 +149,9 @@ static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLU
                                             {NULL, 0, 0}};
 static const choice history_choices[] = {
     {"sine", AMSPH_HISTORY_SINE, 0}, {"ramp", AMSPH_HISTORY_RAMP, 0}, {NULL, 0, 0}};
+
+static const choice phase_choices[] = {
+    {"liquid", AMSPH_MATERIAL_LIQUID, 0}, {"gas", AMSPH_MATERIAL_GAS, 0}, {NULL, 0, 0}};
 
 static const choice preset_choices[] = {{"none", AMSPH_PRESET_NONE, 0},
                                         {"steel_304", AMSPH_PRESET_STEEL_304, 0},
@@ -279,7 +285,9 @@ static const key_spec specs[] = {
      .lo = 0, .hi = 1, .def = 0.1, .offset = FLUID(delta), .doc = "delta-SPH coefficient"},
     {.section = SEC_FLUID, .key = "pressure_gradient", .type = VT_CHOICE,
      .choices = pressure_choices, .def = PRESSURE_RENORMALISED, .offset = FLUID(pressure_gradient),
-     .doc = "Pressure force: free-surface renormalised (Russell Eq. 3.17) or plain symmetric"},
+     .doc = "Pressure force: free-surface renormalised (Russell Eq. 3.17), plain symmetric, or "
+            "multiphase: pressure and laminar viscosity in the (V_a² + V_b²) form with the "
+            "density-weighted pair pressure (Fuchs et al. 2022 Eq. 23; for a gas phase)"},
     {.section = SEC_FLUID, .key = "viscosity", .type = VT_CHOICE, .choices = viscosity_choices,
      .def = VISCOSITY_LAMINAR, .offset = FLUID(viscosity),
      .doc = "Viscous force: laminar (Morris 1997, harmonic-mean mu) or Monaghan artificial"},
@@ -321,6 +329,20 @@ static const key_spec specs[] = {
      .lo = 0, .hi = 10, .def = 0, .offset = FLUID(shifting),
      .doc = "Particle shifting coefficient A: fluid particles move by -A h |u| dt grad C after each step "
             "(Skillen et al. 2013; Lind et al. 2012, tangential only near free surfaces); 2 is usual; 0: off"},
+    {.section = SEC_FLUID, .key = "barrier", .type = VT_MAP, .sub = SEC_BARRIER,
+     .doc = "Barrier forces between pairs closer than `distance` (Fuchs et al. 2022 Eq. 34); "
+            "present: on. In 2D, stiffness and damping are per metre of depth"},
+    {.section = SEC_BARRIER, .key = "stiffness", .type = VT_NUMBER, .unit = "kg/s²",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = FLUID(barrier_stiffness),
+     .rule = "adds the step limit 0.22 sqrt(m/k_b) (Fuchs Eq. 42), m the lightest fluid particle",
+     .doc = "Stiffness k_b of the elastic part k_b (r_b - r)"},
+    {.section = SEC_BARRIER, .key = "damping", .type = VT_NUMBER, .unit = "kg/(m·s)",
+     .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = FLUID(barrier_damping),
+     .doc = "Damping d_b of the viscous part d_b |r_b - r| dr/dt (approach speed)"},
+    {.section = SEC_BARRIER, .key = "distance", .type = VT_NUMBER, .unit = "m",
+     .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = FLUID(barrier_distance),
+     .rule = "< the smoothing length `h_over_dx` dx",
+     .doc = "Interaction distance r_b: pairs closer than this repel (Fuchs: dx / 2)"},
     {.section = SEC_TOP, .key = "thermal", .type = VT_MAP, .sub = SEC_THERMAL,
      .doc = "Heat transfer and phase change module; present: on"},
     {.section = SEC_THERMAL, .key = "integration", .type = VT_CHOICE,
@@ -492,6 +514,12 @@ static const key_spec specs[] = {
      .doc = "Reference density rho0 of the equation of state: a number, or a list of [T, rho0] pairs "
             "(isothermally incompressible fluid, Russell Eq. 3.52: the linear law rho_ref - alpha_T "
             "(T - T_ref) is a two-point table; constant beyond the table's ends)"},
+    {.section = SEC_MATERIAL, .key = "phase", .type = VT_CHOICE, .choices = phase_choices,
+     .def = AMSPH_MATERIAL_LIQUID, .offset = MAT(phase),
+     .rule = "`gas`: only `kind: fluid`, no `melting_temperature`, no evaporation",
+     .doc = "`liquid`: the melt (solid too, as its temperature says); `gas`: an atmosphere of its own "
+            "fluid phase (Fuchs et al. 2022 Sec. 4.1), outside the liquid for the surface terms, "
+            "transparent to the laser, never melting or evaporating"},
     {.section = SEC_MATERIAL, .key = "viscosity", .type = VT_NUMBER, .unit = "Pa·s",
      .flags = F_FROM_LO, .lo = 0, .offset = MAT(viscosity), .doc = "Dynamic viscosity"},
     {.section = SEC_MATERIAL, .key = "sound_speed", .type = VT_NUMBER, .unit = "m/s",
@@ -666,6 +694,11 @@ static const key_spec specs[] = {
      .def = 0, .offset = GEO(hydrostatic),
      .doc = "Fluid starts in hydrostatic balance under the hydrostatic fluid above it in its lattice "
             "column (stacked blocks of different density too)"},
+    {.section = SEC_GEOMETRY, .key = "fill", .type = VT_CHOICE, .choices = bool_choices,
+     .def = 0, .offset = GEO(fill), .rule = "not on the first block",
+     .doc = "The block places only its lattice points farther than 0.75 dx from every particle of the "
+            "blocks before it: a gas box filling the space around the other shapes (seamless where "
+            "their lattices line up with its own)"},
 };
 /* clang-format on */
 
@@ -1468,6 +1501,25 @@ static int finish_material_thermal(parser *p, const scope *sc)
     return 0;
 }
 
+/* A gas neither melts nor evaporates (Fuchs et al. 2022 Sec. 4.1: the
+ * atmosphere around the melt). */
+static int finish_material_gas(parser *p, const scope *sc)
+{
+    const amsph_material *m = sc->target;
+    if (m->phase != AMSPH_MATERIAL_GAS)
+        return 0;
+    static const char *const not_for_gas[] = {"melting_temperature", "recoil_pressure_constant"};
+    for (size_t k = 0; k < sizeof not_for_gas / sizeof not_for_gas[0]; k++) {
+        const yaml_node_t *given = found(sc, not_for_gas[k]); /* by the material or its preset */
+        if (given)
+            return fail(p, line_of(given),
+                        "material '%s' is a gas ('phase: gas'), which neither melts nor evaporates: "
+                        "it must not have '%s%s' (given here or by its preset)",
+                        m->name, sc->prefix, not_for_gas[k]);
+    }
+    return 0;
+}
+
 static int finish_material(parser *p, const scope *sc)
 {
     const amsph_material *m = sc->target;
@@ -1477,6 +1529,8 @@ static int finish_material(parser *p, const scope *sc)
             return fail(p, line_of(name), "duplicate material name '%s' (first on line %zu)",
                         m->name, p->material_line[i]);
     p->material_line[sc->index] = line_of(name);
+    if (finish_material_gas(p, sc))
+        return CASE_ERROR;
     return finish_material_thermal(p, sc);
 }
 
@@ -1655,10 +1709,26 @@ static int finish_grains(parser *p)
     return 0;
 }
 
+/* A gas is a fluid phase: it needs the fluid module with the multiphase
+ * pressure force (Fuchs et al. 2022 Eq. 23), whose density-weighted pair
+ * pressure and volume weights hold a density ratio of 100. */
+static int check_gas(parser *p)
+{
+    const amsph_case *c = p->c;
+    for (int i = 0; i < c->n_materials; i++)
+        if (c->materials[i].phase == AMSPH_MATERIAL_GAS &&
+            (!c->fluid.enabled || c->fluid.pressure_gradient != PRESSURE_MULTIPHASE))
+            return fail(p, p->material_line[i],
+                        "material '%s' is a gas: it needs the fluid module with "
+                        "'fluid.pressure_gradient: multiphase' (Fuchs et al. 2022 Eq. 23)",
+                        c->materials[i].name);
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
-    if (finish_grains(p))
+    if (finish_grains(p) || check_gas(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
@@ -1758,6 +1828,15 @@ static int finish_geometry(parser *p, const scope *sc)
     amsph_geometry *g = sc->target;
     g->line = (int)line_of(sc->map);
     g->has_temperature = found(sc, "temperature") != NULL;
+    if (p->c->materials[g->material].phase == AMSPH_MATERIAL_GAS && g->kind != AMSPH_KIND_FLUID)
+        return fail(p, line_of(found(sc, "kind")),
+                    "'%skind' must be fluid: material '%s' is a gas (its particles are fluid)",
+                    sc->prefix, p->c->materials[g->material].name);
+    if (g->fill && sc->index == 0)
+        return fail(p, line_of(found(sc, "fill")),
+                    "'%sfill' fills around the blocks before it, and this is the first block: "
+                    "list it after the shapes it surrounds",
+                    sc->prefix);
     if (g->shape == AMSPH_SHAPE_BOX) {
         const yaml_node_t *open = found(sc, "open");
         if (open && g->layers == 0)
@@ -1822,12 +1901,26 @@ static int finish_temperature_history(parser *p, const scope *sc)
     return 0;
 }
 
+/* Fuchs et al. 2022 Eq. 34 asks r_b < h. */
+static int finish_barrier(parser *p, const scope *sc)
+{
+    const amsph_case *c = p->c;
+    if (!(c->fluid.barrier_distance < c->h_over_dx * c->dx))
+        return fail(p, line_of(found(sc, "distance")),
+                    "'fluid.barrier.distance' (%g m) must be below the smoothing length "
+                    "h_over_dx dx = %g m",
+                    c->fluid.barrier_distance, c->h_over_dx * c->dx);
+    return 0;
+}
+
 static int finish_scope(parser *p, const scope *sc)
 {
     switch (sc->section) {
     case SEC_FLUID:
         p->c->fluid.enabled = 1;
         return 0;
+    case SEC_BARRIER:
+        return finish_barrier(p, sc);
     case SEC_THERMAL:
         p->c->thermal.enabled = 1;
         p->thermal_line = line_of(sc->map);

@@ -53,6 +53,12 @@ typedef struct {
     double v[AMSPH_MAX_TABLE];
 } amsph_property;
 
+/* The phase of a material's fluid particles (materials[].phase). A gas is
+ * the atmosphere around the liquid (Fuchs et al. 2022 Sec. 4.1): its own
+ * fluid phase, outside the liquid for the surface terms, transparent to the
+ * laser, and it neither melts nor evaporates. */
+typedef enum { AMSPH_MATERIAL_LIQUID = 0, AMSPH_MATERIAL_GAS = 1 } amsph_material_phase;
+
 /* Named materials of PHYSICS.md "Materials" (`preset` in case files). */
 typedef enum {
     AMSPH_PRESET_NONE = 0,
@@ -95,6 +101,7 @@ typedef struct {
     double vapour_mass_constant;           /* C_M = M / (2 pi R), K s^2/m^2 */
     double sticking_coefficient;           /* c_s, default 1 */
     double evaporation_enthalpy_reference; /* T_h,0 of h(T) in Eq. 18, K, default 0 */
+    int phase; /* AMSPH_MATERIAL_LIQUID or _GAS: a gas is a fluid phase of its own (Fuchs et al. 2022 Sec. 4.1) */
 } amsph_material;
 
 /* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at
@@ -117,6 +124,8 @@ typedef struct {
     double temperature;    /* initial temperature, K */
     int has_temperature;   /* 1 if `temperature` was given */
     int hydrostatic;       /* 1: initial density in hydrostatic balance (fluid module) */
+    int fill;              /* 1: only the lattice points away from the particles of the blocks
+                              before it (a gas around the other shapes) */
     /* powder bed only (host/powder.h) */
     amsph_powder_distribution distribution; /* default regular */
     double grain_radius;     /* regular: every grain; lognormal: exp(mean of ln r); mixed: the
@@ -150,6 +159,11 @@ typedef struct {
     double damping_rate;        /* relaxation: u *= exp(-rate dt) each step, 1/s, default 0 */
     double damping_end;         /* ... while t < damping_end, s, default 0 */
     double shifting;            /* particle shifting coefficient A (D = A h |u| dt), default 0: off */
+    /* barrier forces of too-close pairs (Fuchs et al. 2022 Eq. 34), on with a
+     * `barrier:` section; 2D: per metre of depth */
+    double barrier_stiffness;   /* k_b, kg/s^2 (2D: kg/(m s^2)); 0: off */
+    double barrier_damping;     /* d_b, kg/(m s) (2D: kg/(m^2 s)), default 0 */
+    double barrier_distance;    /* r_b, m, below the smoothing length */
 } amsph_fluid_settings;
 
 /* The thermal module (enthalpy, conduction, phase change, radiation); on

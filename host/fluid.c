@@ -27,6 +27,19 @@ static int reference_density_varies(const amsph_case *c)
     return varies && (c->thermal.enabled || c->temperature_history.enabled);
 }
 
+/* The smallest mass of a fluid particle of the scene (masses never change),
+ * for the barrier's step limit; INFINITY without fluid. */
+static double lightest_fluid_mass(const amsph_host_particles *h)
+{
+    const amsph_real *mass = amsph_host_real(h, AMSPH_FIELD_MASS);
+    const int *kind = h->data[AMSPH_FIELD_KIND];
+    double lightest = INFINITY;
+    for (int i = 0; i < h->n; ++i)
+        if (kind[i] == AMSPH_KIND_FLUID)
+            lightest = fmin(lightest, mass[i]);
+    return lightest;
+}
+
 int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
 {
     const amsph_fluid_settings *f = &s->config.fluid;
@@ -47,6 +60,10 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->tensile_correction = (amsph_real)f->tensile_correction;
     p->dx = (amsph_real)s->config.dx;
     p->shifting = (amsph_real)f->shifting;
+    p->barrier_stiffness = (amsph_real)f->barrier_stiffness;
+    p->barrier_damping = (amsph_real)f->barrier_damping;
+    p->barrier_distance = (amsph_real)f->barrier_distance;
+    s->lightest_fluid_mass = lightest_fluid_mass(h);
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
     set_reference_density(&s->config, h);
     s->reference_density_varies = reference_density_varies(&s->config);
@@ -170,5 +187,8 @@ int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
         lower(dt, limit, 0.125 * h * h / nu, "viscous");
     if (amax > 0.0)
         lower(dt, limit, 0.25 * sqrt(h / amax), "force");
+    /* the contact condition of Fuchs et al. 2022 Eq. 42 for the barrier forces */
+    if (s->config.fluid.barrier_stiffness > 0.0)
+        lower(dt, limit, 0.22 * sqrt(s->lightest_fluid_mass / s->config.fluid.barrier_stiffness), "barrier");
     return 0;
 }

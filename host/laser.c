@@ -161,9 +161,10 @@ static amsph_arg field(amsph_sim *s, amsph_field_id f)
 static int depth_extreme(amsph_sim *s, double sign, double *extreme)
 {
     const int n = s->particles.n;
-    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "laser_depth_extent", n, field(s, AMSPH_FIELD_POSITION), amsph_arg_int(n),
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "laser_depth_extent", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                             amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(sign),
+                             amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(sign),
                              amsph_arg_buffer(s->work)));
     return amsph_reduce_max(s->backend, s->work, n, extreme);
 }
@@ -202,14 +203,16 @@ static int absorb_volumetric(amsph_sim *s)
     const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
     const amsph_arg params = amsph_arg_bytes(&pass, sizeof pass);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", nodes, field(s, AMSPH_FIELD_POSITION),
-                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY), grid,
-                             amsph_arg_buffer(s->grid.cell_start), params, amsph_arg_int(nodes),
+                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_MATERIAL), grid, amsph_arg_buffer(s->grid.cell_start),
+                             amsph_arg_buffer(s->materials), params, amsph_arg_int(nodes),
                              amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_volume)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", l->columns, amsph_arg_buffer(l->bin_volume),
                              params, amsph_arg_int(l->columns), amsph_arg_buffer(l->bin_power)));
     return AMSPH_LAUNCH(b, "laser_gather_power", n, field(s, AMSPH_FIELD_POSITION),
-                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY), amsph_arg_int(n),
-                        grid, params, amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_power),
+                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
+                        field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n), grid,
+                        amsph_arg_buffer(s->materials), params, amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_power),
                         field(s, AMSPH_FIELD_LASER_POWER), amsph_arg_buffer(s->work));
 }
 
@@ -219,9 +222,9 @@ static int absorb_surface(amsph_sim *s)
     const int n = s->particles.n;
     return AMSPH_LAUNCH(s->backend, "laser_surface_absorb", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
-                        amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
+                        field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
                         amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                        amsph_arg_buffer(s->grid.cell_start),
+                        amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
                         amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(s->h),
                         field(s, AMSPH_FIELD_LASER_POWER), amsph_arg_buffer(s->work));
 }

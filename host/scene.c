@@ -136,11 +136,115 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
         ((int *)h->data[AMSPH_FIELD_GRAIN])[i] = g->kind == AMSPH_KIND_GRAIN ? grain : GRAIN_NONE;
 }
 
-/* Visits the lattice points of block g: counts them, or (h != NULL) checks
- * and stores them from particle index h->n - count onwards. A block of kind
- * grain is grain first_grain; a powder bed's grain i is first_grain + i. */
+/* A `fill` block leaves out its lattice points closer than this many dx to
+ * a particle placed before it: on a common lattice it skips exactly the
+ * occupied points, on an offset one those nearer than three quarters of a
+ * spacing. */
+#define FILL_CLEARANCE 0.75
+
+/* The particles placed so far, bucketed in cells of dx over the domain, for
+ * the `fill` test. */
+typedef struct {
+    int dim, cells[3];
+    double lo[3], size;
+    int *start; /* cells + 1 offsets into order */
+    amsph_real *x; /* their positions, by cell (a copy: placing the block resizes h) */
+} occupied;
+
+static int occupied_cell(const occupied *o, const double x[3], int cc[3])
+{
+    int cell = 0;
+    for (int d = o->dim - 1; d >= 0; --d) {
+        int k = (int)floor((x[d] - o->lo[d]) / o->size);
+        k = k < 0 ? 0 : k >= o->cells[d] ? o->cells[d] - 1 : k;
+        cc[d] = k;
+        cell = cell * o->cells[d] + k;
+    }
+    return cell;
+}
+
+static void occupied_free(occupied *o)
+{
+    free(o->start);
+    free(o->x);
+}
+
+/* Buckets the first n particles of h (a counting sort by cell). */
+static int occupied_build(const amsph_case *c, const amsph_host_particles *h, int n, occupied *o)
+{
+    memset(o, 0, sizeof *o);
+    o->dim = c->dim;
+    o->size = c->dx;
+    const amsph_real *x_h = amsph_host_real(h, AMSPH_FIELD_POSITION);
+    long long total = 1;
+    for (int d = 0; d < 3; ++d) {
+        o->lo[d] = c->domain_min[d];
+        o->cells[d] = d < c->dim ? (int)ceil((c->domain_max[d] - c->domain_min[d]) / o->size) + 1 : 1;
+        total *= o->cells[d];
+    }
+    o->start = calloc((size_t)total + 1, sizeof *o->start);
+    o->x = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *o->x);
+    if (!o->start || !o->x) {
+        occupied_free(o);
+        return amsph_fail("out of host memory for a 'fill' block (%lld cells)", total);
+    }
+    int cc[3];
+    for (int i = 0; i < n; ++i) {
+        const double x[3] = {x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2]};
+        ++o->start[occupied_cell(o, x, cc) + 1];
+    }
+    for (long long k = 0; k < total; ++k)
+        o->start[k + 1] += o->start[k];
+    int *next = malloc((size_t)total * sizeof *next);
+    if (!next) {
+        occupied_free(o);
+        return amsph_fail("out of host memory for a 'fill' block (%lld cells)", total);
+    }
+    memcpy(next, o->start, (size_t)total * sizeof *next);
+    for (int i = 0; i < n; ++i) {
+        const double x[3] = {x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2]};
+        const int slot = next[occupied_cell(o, x, cc)]++;
+        for (int d = 0; d < 3; ++d)
+            o->x[3 * slot + d] = x_h[3 * i + d];
+    }
+    free(next);
+    return 0;
+}
+
+/* Is a particle placed before within FILL_CLEARANCE dx of x? */
+static int occupied_near(const occupied *o, const double x[3])
+{
+    const double reach2 = FILL_CLEARANCE * FILL_CLEARANCE * o->size * o->size;
+    int cc[3] = {0, 0, 0};
+    occupied_cell(o, x, cc);
+    const int lo[3] = {-1, o->dim > 1 ? -1 : 0, o->dim > 2 ? -1 : 0};
+    for (int k2 = lo[2]; k2 <= -lo[2]; ++k2)
+        for (int k1 = lo[1]; k1 <= -lo[1]; ++k1)
+            for (int k0 = -1; k0 <= 1; ++k0) {
+                const int k[3] = {cc[0] + k0, cc[1] + k1, cc[2] + k2};
+                int cell = 0, inside = 1;
+                for (int d = o->dim - 1; d >= 0; --d) {
+                    inside &= k[d] >= 0 && k[d] < o->cells[d];
+                    cell = cell * o->cells[d] + k[d];
+                }
+                for (int j = inside ? o->start[cell] : 0; inside && j < o->start[cell + 1]; ++j) {
+                    const amsph_real *y = o->x + 3 * j;
+                    double r2 = 0.0;
+                    for (int d = 0; d < o->dim; ++d)
+                        r2 += (x[d] - y[d]) * (x[d] - y[d]);
+                    if (r2 < reach2)
+                        return 1;
+                }
+            }
+    return 0;
+}
+
+/* Visits the lattice points of block g (a `fill` block: those away from the
+ * particles in `before`): counts them, or (h != NULL) checks and stores
+ * them from particle index h->n - count onwards. A block of kind grain is
+ * grain first_grain; a powder bed's grain i is first_grain + i. */
 static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
-                       int first_grain, amsph_host_particles *h, long long *count)
+                       const occupied *before, int first_grain, amsph_host_particles *h, long long *count)
 {
     const lattice l = block_lattice(g, c->dim, c->dx);
     const long long points = (long long)l.count[0] * l.count[1] * l.count[2];
@@ -149,7 +253,7 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
     for (long long k = 0; k < points; ++k) {
         double x[3];
         lattice_point(&l, k, x);
-        if (!block_contains(g, bed, x, c->dim))
+        if (!block_contains(g, bed, x, c->dim) || (before && occupied_near(before, x)))
             continue;
         if (h) {
             AMSPH_CHECK(check_inside_domain(c, g, x));
@@ -312,19 +416,32 @@ static int set_hydrostatic(const amsph_case *c, const int *first, amsph_host_par
     return 0;
 }
 
-static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
-                      int first_grain, amsph_host_particles *h)
+static int place_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
+                       const occupied *before, int first_grain, amsph_host_particles *h)
 {
     long long count = 0;
-    AMSPH_CHECK(visit_block(c, g, bed, first_grain, NULL, &count));
+    AMSPH_CHECK(visit_block(c, g, bed, before, first_grain, NULL, &count));
     if (count == 0)
         return amsph_fail("%s:%d: geometry block holds no particle at dx = %g m; make it larger "
-                          "than dx",
-                          c->path, g->line, c->dx);
+                          "than dx%s",
+                          c->path, g->line, c->dx, before ? " (or the blocks before it fill it)" : "");
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
-    return visit_block(c, g, bed, first_grain, h, &count);
+    return visit_block(c, g, bed, before, first_grain, h, &count);
+}
+
+/* Block g's particles; a `fill` block's only away from those placed so far. */
+static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
+                      int first_grain, amsph_host_particles *h)
+{
+    if (!g->fill)
+        return place_block(c, g, bed, NULL, first_grain, h);
+    occupied before;
+    AMSPH_CHECK(occupied_build(c, h, h->n, &before));
+    const int status = place_block(c, g, bed, &before, first_grain, h);
+    occupied_free(&before);
+    return status;
 }
 
 /* Grains resolved by at least this many dx in radius. */

@@ -60,6 +60,7 @@ static int upload_materials(amsph_sim *s)
         row[MATERIAL_SOUND_SPEED] = (amsph_real)mat->sound_speed;
         row[MATERIAL_VISCOSITY] = (amsph_real)mat->viscosity;
         row[MATERIAL_MUSHY_VISCOSITY] = (amsph_real)mat->mushy_viscosity;
+        row[MATERIAL_GAS] = mat->phase == AMSPH_MATERIAL_GAS;
         surface_tension_row(mat, row);
         evaporation_row(mat, row);
         row[MATERIAL_DENSITY_POINTS] = (amsph_real)mat->density.n;

@@ -88,6 +88,7 @@ typedef struct {
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */
+    double lightest_fluid_mass;   /* of the scene's fluid particles, kg (2D: kg/m); the barrier's step limit */
     thermal_params thermal;
     amsph_buffer *thermal_table; /* kernels/thermal_table.h */
     amsph_thermal_work thermal_work;

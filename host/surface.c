@@ -31,6 +31,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
         p->temperature |= mat->surface_tension_slope != 0 || mat->surfactant_excess > 0;
     }
     p->temperature |= p->marangoni;
+    for (int m = 0; m < s->config.n_materials; ++m)
+        p->gas |= s->config.materials[m].phase == AMSPH_MATERIAL_GAS;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
         AMSPH_CHECK(amsph_host_add_field(h, fields[k]));
     return 0;
@@ -70,14 +72,15 @@ int amsph_surface_forces(amsph_sim *s)
     const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
     const amsph_arg cells = amsph_arg_buffer(s->grid.cell);
     const amsph_arg cell_start = amsph_arg_buffer(s->grid.cell_start);
+    const amsph_arg materials = amsph_arg_buffer(s->materials);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
-                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), cells,
-                             amsph_arg_int(n), grid, cell_start, params,
-                             field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
+                             field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start,
+                             materials, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
-                             field(s, AMSPH_FIELD_SURFACE_SHEPARD), cells, amsph_arg_int(n), grid,
-                             cell_start, params, field(s, AMSPH_FIELD_NORMAL),
+                             field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_MATERIAL), cells,
+                             amsph_arg_int(n), grid, cell_start, materials, params, field(s, AMSPH_FIELD_NORMAL),
                              field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_curvature", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
@@ -102,7 +105,8 @@ int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit)
     for (int m = 0; m < s->config.n_materials; ++m) {
         double lowest, highest;
         amsph_material_density_bounds(&s->config.materials[m], &lowest, &highest);
-        rho = fmin(rho, lowest);
+        if (s->config.materials[m].phase != AMSPH_MATERIAL_GAS) /* a gas carries no tension */
+            rho = fmin(rho, lowest);
     }
     const double h = s->h;
     const double capillary = 0.25 * sqrt(rho * h * h * h / (2.0 * PI * sigma));

@@ -20,11 +20,11 @@
  *   f_a = -p_v(T_a) n_a delta_a = p_v(T_a) c grad Gamma_a,
  * with the outward unit normal n_a = -grad Gamma_a / |grad Gamma_a|, the
  * colour gradient grad Gamma_a = sum_b V_b grad_a W_ab over every particle
- * (fluid, solid and wall are all material, so it lives on free surfaces
- * only) and the surface delta c |grad Gamma_a| of the radiation
+ * but gas (fluid, solid and wall are all material, so it lives on free
+ * surfaces and liquid-gas interfaces only) and the surface delta c |grad Gamma_a| of the radiation
  * (surface_delta, thermal_params.h): on a flat lattice face the force per
  * area is p_v exactly, pointing into the material. Adds f_a / rho_a to the
- * acceleration of fluid particles. */
+ * acceleration of fluid particles (not of gas, which does not evaporate). */
 KERNEL void recoil_force(GLOBAL const real *position, GLOBAL const real *density,
                          GLOBAL const real *mass, GLOBAL const real *temperature,
                          GLOBAL const int *kind, GLOBAL const int *material,
@@ -34,9 +34,9 @@ KERNEL void recoil_force(GLOBAL const real *position, GLOBAL const real *density
 {
     FOR_EACH_ITEM(a, n)
     {
-        if (kind[a] == KIND_FLUID) {
+        if (kind[a] == KIND_FLUID && !material_is_gas(materials, material[a])) {
             real grad_gamma[3];
-            colour_gradient(position, mass, density, &g, cell_start, cell[a], a, p.h, grad_gamma);
+            colour_gradient(position, mass, density, material, materials, &g, cell_start, cell[a], a, p.h, grad_gamma);
             const real size = sqrt(dot3(grad_gamma, grad_gamma));
             const real delta = surface_delta(size, &p);
             if (delta > REAL(0.0)) {

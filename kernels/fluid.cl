@@ -50,7 +50,10 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
  * rho0_w and c0 are the wall's own (its material at its temperature), so
  * that its volume m_w / rho_w stays dx^d next to fluids of any rho0.
  * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
- * pressure would glue separating fluid to it and draw particles into it. */
+ * pressure would glue separating fluid to it and draw particles into it.
+ * In the multiphase form (a gas fills the space, nothing separates from a
+ * wall) p_w is only kept >= 0: the top of a gas column at rest sits at
+ * p_b less its weight, and a wall held at p_b would push it down. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        GLOBAL const real *reference_density, int n, grid_geometry g,
@@ -87,9 +90,10 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             }
             const real rho0 = reference_density[a];
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
+            const real floor_w = p.pressure_gradient == PRESSURE_MULTIPHASE ? REAL(0.0) : p.background_pressure;
             real p_w = p.background_pressure;
             if (sum_w > REAL(0.0))
-                p_w = fmax(p_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
+                p_w = fmax(floor_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
             pressure[a] = p_w;
             density[a] = rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
@@ -115,13 +119,22 @@ static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, r
     return REAL(2.0) * (q_a - q_b) * r_dot_grad / (r2 + p->eta2) * v_b;
 }
 
+/* Are two materials of the same phase (both gas, or both not)? Density
+ * diffusion acts within a phase: across a liquid-gas interface the
+ * departures rho - rho0 of equal pressures differ by the ratio of the
+ * phases' c0^2, and diffusing them would carry mass across it. */
+static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
+{
+    return material_is_gas(materials, mat_a) == material_is_gas(materials, mat_b);
+}
+
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
  * velocity, so that the density advances like a position (see
  * kernels/integrate.cl):
  *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
  *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
  * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
- * between fluid particles only. closest[a] is the distance to the nearest
+ * between fluid particles of the same phase only. closest[a] is the distance to the nearest
  * other particle, for the guards. Gamma is computed for every particle,
  * the rates for fluid particles. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
@@ -162,7 +175,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                 for (int d = 0; d < 3; ++d)
                     u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
                 drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
-                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE) {
+                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE &&
+                    same_phase(materials, mat_a, material[b])) {
                     const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
                     real dq = q_a - q_b;
                     if (p.density_diffusion == DIFFUSION_FOURTAKAS) {
@@ -205,7 +219,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             grid_point(position, a, x_a);
             const real support = SUPPORT_OVER_H * p.h;
             const fluid_pair_side s_a =
-                fluid_pair_side_of(a, velocity, density, pressure, gamma, liquid_fraction, material, materials, &p);
+                fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction, material, materials, &p);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3], r2;

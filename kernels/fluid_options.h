@@ -9,6 +9,7 @@
 
 #define PRESSURE_RENORMALISED 0 /* Russell 2018 Eq. 3.17 */
 #define PRESSURE_SYMMETRIC 1
+#define PRESSURE_MULTIPHASE 2 /* Fuchs et al. 2022 Eq. 23 (Adami, Hu & Adams 2012, 2013) */
 
 #define VISCOSITY_LAMINAR 0    /* Morris et al. 1997, harmonic-mean viscosity */
 #define VISCOSITY_ARTIFICIAL 1 /* Monaghan 1992 */

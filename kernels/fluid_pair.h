@@ -13,17 +13,76 @@
 #include "smoothing.h"
 #include "vec3.h"
 
+/* The volume weight w_ab of one pair in the pressure and laminar viscous
+ * forces, as a numerator and a denominator (kept apart so that the
+ * single-phase forms round as they always did):
+ *   renormalised, symmetric: w_ab = m_b / (rho_a rho_b)        (Russell 2018 Eqs. 3.17, 3.18)
+ *   multiphase:              w_ab = (V_a^2 + V_b^2) / (2 m_a)  (Fuchs et al. 2022 Eq. 23,
+ *                            after Adami, Hu & Adams 2012; V = m / rho),
+ * equal for a pair of equal particles; the multiphase one weighs a light gas
+ * particle next to a heavy liquid one by the volumes, not by the masses. */
+typedef struct {
+    real num, den;
+} pair_weight;
+
+static inline pair_weight pair_weight_of(int form, real m_a, real m_b, real rho_a, real rho_b)
+{
+    pair_weight w;
+    if (form == PRESSURE_MULTIPHASE) {
+        const real v_a = m_a / rho_a, v_b = m_b / rho_b;
+        w.num = v_a * v_a + v_b * v_b;
+        w.den = REAL(2.0) * m_a;
+    } else {
+        w.num = m_b;
+        w.den = rho_a * rho_b;
+    }
+    return w;
+}
+
+/* The pair's pressure sum P_ab of the pressure force
+ *   a_a = -sum_b w_ab P_ab grad_a W_ab:
+ *   renormalised: p_b / Gamma_a + p_a / Gamma_b                   (Russell 2018 Eq. 3.17)
+ *   symmetric:    p_a + p_b                (the Gammas are 1 here)
+ *   multiphase:   2 (rho_b p_a + rho_a p_b) / (rho_a + rho_b)      (Fuchs et al. 2022 Eq. 23:
+ *                 twice the density-weighted inter-particle pressure, continuous across a
+ *                 density jump); a wall or solid b enters with rho_b = rho_a, so that it
+ *                 holds a gas with its Adami pressure as it holds a liquid (with its own
+ *                 density, a wall 100 times denser than a gas would show the gas its own
+ *                 pressure back) */
+static inline real pair_pressure_sum(int form, real p_a, real p_b, real rho_a, real rho_b, real gamma_a,
+                                     real gamma_b)
+{
+    if (form == PRESSURE_MULTIPHASE)
+        return REAL(2.0) * (rho_b * p_a + rho_a * p_b) / (rho_a + rho_b);
+    return p_b / gamma_a + p_a / gamma_b;
+}
+
 /* Laminar viscosity (Morris, Fox & Zhu 1997 Eq. 8) with the harmonic mean
  * 2 mu_a mu_b / (mu_a + mu_b) in place of (mu_a + mu_b) / 2 (Russell 2018
  * Eq. 3.18) for unequal viscosities:
- *   a_a += sum_b m_b 4 mu_a mu_b / (mu_a + mu_b) / (rho_a rho_b)
- *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab  */
-static inline real laminar_viscosity_factor(real mu_a, real mu_b, real m_b, real rho_a, real rho_b,
-                                            real r_dot_grad, real r2, const fluid_params *p)
+ *   a_a += sum_b w_ab 4 mu_a mu_b / (mu_a + mu_b)
+ *          (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) u_ab,
+ * w_ab = m_b / (rho_a rho_b), or in the multiphase form (V_a^2 + V_b^2) / (2 m_a),
+ * which makes it the viscous term of Fuchs et al. 2022 Eq. 23 (pair_weight_of). */
+static inline real laminar_viscosity_factor(real mu_a, real mu_b, pair_weight w, real r_dot_grad,
+                                            real r2, const fluid_params *p)
 {
     const real mu_sum = mu_a + mu_b;
     const real mu_ab = mu_sum > REAL(0.0) ? REAL(4.0) * mu_a * mu_b / mu_sum : REAL(0.0);
-    return m_b * mu_ab / (rho_a * rho_b) * r_dot_grad / (r2 + p->eta2);
+    return w.num * mu_ab / w.den * r_dot_grad / (r2 + p->eta2);
+}
+
+/* Barrier force of a pair closer than r_b (Fuchs et al. 2022 Eq. 34):
+ *   F_a = sum_b (k_b g + d_b |g| dg/dt) e_ab,  g = r_b - r,  dg/dt = -e_ab . u_ab,
+ * e_ab = r_ab / r, for r < r_b (else 0); a_a = F_a / m_a. Returned as the
+ * factor of r_ab; off (0) without a barrier (k_b = 0). */
+static inline real barrier_factor(real r, real u_dot_r, real m_a, const fluid_params *p)
+{
+    if (!(r < p->barrier_distance) || r <= REAL(0.0))
+        return REAL(0.0);
+    const real g = p->barrier_distance - r;
+    const real g_rate = -u_dot_r / r;
+    return (p->barrier_stiffness * g + p->barrier_damping * g * g_rate) / (m_a * r);
 }
 
 /* Monaghan (1992) artificial viscosity, for approaching pairs:
@@ -61,17 +120,18 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
 
 /* What the pair force needs of particle a, the fluid particle it acts on. */
 typedef struct {
-    real rho, p, mu, c, gamma;
+    real m, rho, p, mu, c, gamma;
     real u[3];
 } fluid_pair_side;
 
-static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *velocity,
+static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *velocity, GLOBAL const real *mass,
                                                  GLOBAL const real *density, GLOBAL const real *pressure,
                                                  GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
                                                  GLOBAL const int *material, GLOBAL const real *materials,
                                                  const fluid_params *p)
 {
     fluid_pair_side s;
+    s.m = mass[a];
     s.rho = density[a];
     s.p = pressure[a];
     s.mu = particle_viscosity(materials, material[a], liquid_fraction[a]);
@@ -83,14 +143,19 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
 }
 
 /* Acceleration of fluid particle a (its side s_a) by neighbour b at r_ab =
- * r_a - r_b, 0 < |r_ab| < support, added to acc. Pressure gradient (Russell
- * 2018 Eq. 3.17):
+ * r_a - r_b, 0 < |r_ab| < support, added to acc: pressure gradient +
+ * viscosity + barrier. Pressure gradient a_a = -sum_b w_ab P_ab grad_a W_ab
+ * (pair_weight_of, pair_pressure_sum):
  *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
+ *                 (Russell 2018 Eq. 3.17)
  *   symmetric:    a_a = -sum_b m_b / (rho_a rho_b) (p_a + p_b) grad_a W_ab
- * plus, if set, the tensile correction (above). The viscosity follows the
- * liquid fraction through the mushy zone (materials.h). Walls, solids and
- * grains enter with their Adami state; viscosity sees their ghost velocity
- * (no-slip) or nothing (free-slip). */
+ *   multiphase:   a_a = -(1/m_a) sum_b (V_a^2 + V_b^2) (rho_b p_a + rho_a p_b) / (rho_a + rho_b)
+ *                 grad_a W_ab, with the laminar viscosity in the same weights
+ *                 (Fuchs et al. 2022 Eq. 23)
+ * plus, if set, the tensile correction (above) and the barrier force. The
+ * viscosity follows the liquid fraction through the mushy zone
+ * (materials.h). Walls, solids and grains enter with their Adami state;
+ * viscosity sees their ghost velocity (no-slip) or nothing (free-slip). */
 static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, const real r_ab[3], real r2,
                                            GLOBAL const real *velocity, GLOBAL const real *wall_velocity,
                                            GLOBAL const real *density, GLOBAL const real *pressure,
@@ -104,7 +169,11 @@ static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, co
     const int mat_b = material[b];
     const real rho_b = density[b], m_b = mass[b];
     const real gamma_b = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[b] : REAL(1.0);
-    real pressure_term = -m_b / (s_a->rho * rho_b) * (pressure[b] / s_a->gamma + s_a->p / gamma_b) * f;
+    const pair_weight w = pair_weight_of(p->pressure_gradient, s_a->m, m_b, s_a->rho, rho_b);
+    real pressure_term = -w.num / w.den *
+                         pair_pressure_sum(p->pressure_gradient, s_a->p, pressure[b], s_a->rho,
+                                           fluid_b ? rho_b : s_a->rho, s_a->gamma, gamma_b) *
+                         f;
     if (fluid_b && p->tensile_correction > REAL(0.0))
         pressure_term += tensile_correction(s_a->p, pressure[b], s_a->rho, rho_b, m_b, sqrt(r2), f, p);
     real u_visc[3];
@@ -115,7 +184,7 @@ static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, co
     if (fluid_b || p->wall_slip == WALL_NO_SLIP) {
         if (p->viscosity == VISCOSITY_LAMINAR) {
             const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
-            visc_scalar = laminar_viscosity_factor(s_a->mu, mu_b, m_b, s_a->rho, rho_b, f * r2, r2, p);
+            visc_scalar = laminar_viscosity_factor(s_a->mu, mu_b, w, f * r2, r2, p);
         } else {
             const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
             visc_radial = -m_b * f *
@@ -123,8 +192,15 @@ static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, co
                                                REAL(0.5) * (s_a->rho + rho_b), p);
         }
     }
+    real barrier = REAL(0.0); /* multiplies r_ab */
+    if (p->barrier_stiffness > REAL(0.0)) {
+        real u_ab[3];
+        for (int d = 0; d < 3; ++d)
+            u_ab[d] = s_a->u[d] - velocity[3 * b + d];
+        barrier = barrier_factor(sqrt(r2), dot3(u_ab, r_ab), s_a->m, p);
+    }
     for (int d = 0; d < 3; ++d)
-        acc[d] += (pressure_term + visc_radial) * r_ab[d] + visc_scalar * u_visc[d];
+        acc[d] += (pressure_term + visc_radial + barrier) * r_ab[d] + visc_scalar * u_visc[d];
 }
 
 #endif

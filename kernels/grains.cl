@@ -210,7 +210,7 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
                     continue;
                 if (kind[b] == KIND_FLUID) {
                     if (r2 < support * support) {
-                        const fluid_pair_side s_b = fluid_pair_side_of(b, velocity, density, pressure, gamma,
+                        const fluid_pair_side s_b = fluid_pair_side_of(b, velocity, mass, density, pressure, gamma,
                                                                        liquid_fraction, material, materials, &fp);
                         real r_br[3] = {-r_rb[0], -r_rb[1], -r_rb[2]};
                         real a_br[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};

@@ -97,8 +97,8 @@ static inline int laser_node_number(const laser_params *p, const int i[AMSPH_DIM
  * minus the shallowest. The host lays each pass's nodes over that range
  * only: above the material a column carries its irradiance unchanged, and
  * below it there is nothing to absorb. */
-KERNEL void laser_depth_extent(GLOBAL const real *position, int n, grid_geometry g, laser_params p, real sign,
-                               GLOBAL real *out)
+KERNEL void laser_depth_extent(GLOBAL const real *position, GLOBAL const int *material, int n, grid_geometry g,
+                               GLOBAL const real *materials, laser_params p, real sign, GLOBAL real *out)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -107,7 +107,7 @@ KERNEL void laser_depth_extent(GLOBAL const real *position, int n, grid_geometry
         real q[AMSPH_DIM];
         laser_beam_coords(&g, &p, axis, position, a, q);
         const real reach = (laser_axis_index(&p) + REAL(1.0)) * p.bin_size;
-        int under = 1;
+        int under = !material_is_gas(materials, material[a]); /* a gas is transparent */
         for (int k = 0; k < AMSPH_DIM - 1; ++k)
             under &= fabs(q[k]) < reach;
         out[a] = under ? sign * q[AMSPH_DIM - 1] : (real)LASER_NOT_UNDER;
@@ -151,8 +151,9 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
  * others in those cells are passed over by their offsets, before the
  * weight is formed. */
 KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
-                                 GLOBAL const real *density, grid_geometry g,
-                                 GLOBAL const int *cell_start, laser_params p, int nodes,
+                                 GLOBAL const real *density, GLOBAL const int *material, grid_geometry g,
+                                 GLOBAL const int *cell_start, GLOBAL const real *materials,
+                                 laser_params p, int nodes,
                                  GLOBAL real *bin_weight, GLOBAL real *bin_volume)
 {
     FOR_EACH_ITEM(node, nodes)
@@ -185,7 +186,7 @@ KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real 
                 offset[k] = dot3(r, axis[k]) / p.bin_size;
                 in_stencil &= fabs(offset[k]) < REAL(1.0);
             }
-            if (in_stencil) {
+            if (in_stencil && !material_is_gas(materials, material[b])) { /* a gas is transparent */
                 const real w = laser_pic_weight(offset);
                 sum_w += w;
                 sum_wv += w * mass[b] / density[b];
@@ -240,7 +241,8 @@ KERNEL void laser_absorb_columns(GLOBAL const real *bin_volume, laser_params p, 
  * so the particles absorb what the bins did (to rounding: w_an here comes
  * from the beam coordinates, in step 1 from the offset to the node). */
 KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *mass,
-                               GLOBAL const real *density, int n, grid_geometry g, laser_params p,
+                               GLOBAL const real *density, GLOBAL const int *material, int n,
+                               grid_geometry g, GLOBAL const real *materials, laser_params p,
                                GLOBAL const real *bin_weight, GLOBAL const real *bin_power,
                                GLOBAL real *laser_power, GLOBAL real *absorbed)
 {
@@ -263,7 +265,7 @@ KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *m
                 offset[k] = u[k] - (real)i[k];
             }
             const int node = laser_node_number(&p, i);
-            if (node >= 0 && bin_weight[node] > REAL(0.0))
+            if (node >= 0 && bin_weight[node] > REAL(0.0) && !material_is_gas(materials, material[a]))
                 power += bin_power[node] * laser_pic_weight(offset) / bin_weight[node];
         }
         laser_power[a] = power * density[a] / mass[a];
@@ -286,14 +288,15 @@ KERNEL void laser_gather_power(GLOBAL const real *position, GLOBAL const real *m
  * of flat_face_delta (kernels/thermal.cl) without a cut-off, makes it exact
  * on a lattice face. No shadowing: every face turned to the beam is lit. */
 KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real *mass,
-                                 GLOBAL const real *density, GLOBAL const int *cell, int n,
-                                 grid_geometry g, GLOBAL const int *cell_start, laser_params p,
+                                 GLOBAL const real *density, GLOBAL const int *material,
+                                 GLOBAL const int *cell, int n, grid_geometry g,
+                                 GLOBAL const int *cell_start, GLOBAL const real *materials, laser_params p,
                                  real h, GLOBAL real *laser_power, GLOBAL real *absorbed)
 {
     FOR_EACH_ITEM(a, n)
     {
         real grad[3];
-        colour_gradient(position, mass, density, &g, cell_start, cell[a], a, h, grad);
+        colour_gradient(position, mass, density, material, materials, &g, cell_start, cell[a], a, h, grad);
         real axis[AMSPH_DIM][3];
         laser_frame(&p, axis);
         real q[AMSPH_DIM];
@@ -301,7 +304,7 @@ KERNEL void laser_surface_absorb(GLOBAL const real *position, GLOBAL const real 
         real r2 = REAL(0.0);
         for (int k = 0; k < AMSPH_DIM - 1; ++k)
             r2 += q[k] * q[k];
-        const real facing = fmax(REAL(0.0), dot3(grad, p.direction));
+        const real facing = material_is_gas(materials, material[a]) ? REAL(0.0) : fmax(REAL(0.0), dot3(grad, p.direction));
         laser_power[a] = p.absorption * laser_irradiance(&p, r2) * p.surface_delta * facing;
         absorbed[a] = laser_power[a] * mass[a] / density[a];
     }

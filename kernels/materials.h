@@ -23,11 +23,13 @@
 #define MATERIAL_BOILING_TEMPERATURE 12 /* T_v, K */
 #define MATERIAL_VAPOUR_HEAT 13        /* h_v - h(T_h,0) with h from 0 K (thermal_table.h), J/kg */
 #define MATERIAL_VAPOUR_FLUX 14        /* 0.82 c_s sqrt(C_M), sqrt(K) s/m */
+/* 1: a gas (materials[].phase; Fuchs et al. 2022 Sec. 4.1), 0: liquid or solid */
+#define MATERIAL_GAS 15
 /* Reference density rho0(T): n points (T_i, rho0_i), T increasing, linear
  * between them and constant beyond the ends; n = 1: the constant rho0_0. */
 #define MATERIAL_TABLE_POINTS 16        /* AMSPH_MAX_TABLE of host/case.h */
-#define MATERIAL_DENSITY_POINTS 15      /* n, at most MATERIAL_TABLE_POINTS */
-#define MATERIAL_DENSITY_TEMPERATURE 16 /* T_i, K */
+#define MATERIAL_DENSITY_POINTS 16      /* n, at most MATERIAL_TABLE_POINTS */
+#define MATERIAL_DENSITY_TEMPERATURE 17 /* T_i, K */
 #define MATERIAL_DENSITY_VALUE (MATERIAL_DENSITY_TEMPERATURE + MATERIAL_TABLE_POINTS) /* rho0_i, kg/m^3 */
 #define MATERIAL_STRIDE (MATERIAL_DENSITY_VALUE + MATERIAL_TABLE_POINTS)
 
@@ -53,6 +55,14 @@ static inline real reference_density_of_temperature(GLOBAL const real *table, in
         if (temperature < t[i])
             return rho0[i - 1] + (temperature - t[i - 1]) * (rho0[i] - rho0[i - 1]) / (t[i] - t[i - 1]);
     return rho0[n - 1];
+}
+
+/* Is the material a gas: the atmosphere around the liquid, which is
+ * outside it for the surface terms (kernels/colour.h, surface.cl), the
+ * laser and evaporation? */
+static inline int material_is_gas(GLOBAL const real *table, int material)
+{
+    return material_value(table, material, MATERIAL_GAS) != REAL(0.0);
 }
 
 /* Viscosity ramped through the mushy zone by the liquid fraction s (Russell

@@ -6,7 +6,10 @@
  * has c = 0, so the colour gradient lives on free surfaces only: where liquid
  * meets the solid of the same material, or a wall, there is no surface and
  * no tension (Russell: "solid and fluid particles were considered to be of
- * the same color function"). The terms use their own smoothing length h_st
+ * the same color function"). A gas (materials[].phase) is outside: its
+ * particles have c = 0 and no normal, so the liquid sees a gas as it sees
+ * the void, and the CSF force acts on the liquid side of a liquid-gas
+ * interface (the denser phase, as Fuchs et al. 2022 Remark 3 has it). The terms use their own smoothing length h_st
  * (surface_params.h; Russell: 1.5 times the fluid's), so their pair loops
  * reach p.reach cells around a particle's cell. Four gathers:
  *   surface_shepard    Gamma_a = sum_b V_b W_ab
@@ -77,10 +80,17 @@ static inline real normal_size(GLOBAL const real *normal, int a)
                 normal[3 * a + 2] * normal[3 * a + 2]);
 }
 
-/* Gamma_a = sum_b V_b W_ab at h_st, over every particle. */
+/* Does particle b have colour 1: liquid, solid or wall, not gas? */
+static inline int colour_material(GLOBAL const real *materials, GLOBAL const int *material, int b)
+{
+    return !material_is_gas(materials, material[b]);
+}
+
+/* Gamma_a = sum_b V_b W_ab at h_st, over every particle of colour 1. */
 KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
-                            GLOBAL const real *mass, GLOBAL const int *cell, int n, grid_geometry g,
-                            GLOBAL const int *cell_start, surface_params p, GLOBAL real *shepard)
+                            GLOBAL const real *mass, GLOBAL const int *material, GLOBAL const int *cell,
+                            int n, grid_geometry g, GLOBAL const int *cell_start,
+                            GLOBAL const real *materials, surface_params p, GLOBAL real *shepard)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -93,7 +103,7 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (grid_pair_within(&run, position, b, support2, r_ab, &r2))
+            if (colour_material(materials, material, b) && grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
         }
         shepard[a] = sum;
@@ -101,7 +111,7 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
 }
 
 /* The free-surface-consistent colour gradient (Russell 2018 Eq. 3.26) with
- * c = 1 on every particle:
+ * c = 1 on every particle but gas (c = 0, no normal):
  *   n_a = sum_b V_b (c_b / Gamma_a + c_a / Gamma_b) grad_a W_ab,
  * which points into the material, of size ~ 1 / (interface width); across
  * a surface it integrates to 1 (the jump of c). The unit normal n^_a enters
@@ -120,8 +130,9 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
  *    2.6 times too large. They are not surface normals. */
 KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *density,
                            GLOBAL const real *mass, GLOBAL const real *shepard,
-                           GLOBAL const int *cell, int n, grid_geometry g,
-                           GLOBAL const int *cell_start, surface_params p, GLOBAL real *normal,
+                           GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                           GLOBAL const int *cell_start, GLOBAL const real *materials,
+                           surface_params p, GLOBAL real *normal,
                            GLOBAL real *unit_normal, GLOBAL real *normal_weight)
 {
     FOR_EACH_ITEM(a, n)
@@ -134,10 +145,12 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         const real support2 = surface_support2(&p), support = sqrt(support2);
         real x_a[3];
         grid_point(position, a, x_a);
+        const int material_a = colour_material(materials, material, a);
         FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
         {
             real r_ab[3], r2;
-            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+            if (!material_a || !colour_material(materials, material, b) ||
+                !grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
             const real v_b = mass[b] / density[b];
@@ -148,7 +161,7 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
             }
         }
         const real size = sqrt(dot3(sum, sum));
-        const int inward = dot3(sum, grad_gamma) > REAL(0.0) && shepard[a] >= p.min_shepard;
+        const int inward = material_a && dot3(sum, grad_gamma) > REAL(0.0) && shepard[a] >= p.min_shepard;
         const real psi = inward ? fmin(fmax(size * p.h / p.normal_cutoff - REAL(1.0), REAL(0.0)), REAL(1.0))
                                 : REAL(0.0);
         normal_weight[a] = psi;
@@ -203,16 +216,36 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
     }
 }
 
+/* The term of gas particle b in the liquid-gas colour gradient of liquid
+ * particle a (Fuchs et al. 2022 Eq. 19, chi = 1, b over the gas):
+ *   grad c_a = (1/V_a) sum_b (V_a^2 + V_b^2) rho_a / (rho_a + rho_b) grad_a W_ab,
+ * which points out of the liquid. It is the colour gradient that the
+ * multiphase pressure force (Fuchs Eq. 23, kernels/fluid.cl) balances: a
+ * pressure P inside the liquid and none in the gas push liquid particle a
+ * with P V_a grad c_a (as sum_b (V_a^2 + V_b^2) grad_a W_ab vanishes over a
+ * full support), so a CSF force along it holds the Young-Laplace jump
+ * without the mismatch of two different discrete gradients. Returned as
+ * the factor of r_ab, f the kernel's grad_a W_ab = f r_ab. */
+static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real rho_b, real f)
+{
+    const real v_a = m_a / rho_a, v_b = m_b / rho_b;
+    return (v_a * v_a + v_b * v_b) * rho_a / (rho_a + rho_b) * f / v_a;
+}
+
 /* On fluid particles, with the curvature smoothed over the particles with a
  * normal (Russell 2018 Eq. 3.30),
  *   kappa~_a = (1/Gamma*_a) sum_b psi_b V_b kappa_b W_ab,
  * the CSF force per volume (Russell Eq. 3.31)
- *   f_a = -sigma(T_a) kappa~_a n_a
+ *   f_a = -sigma(T_a) kappa~_a n_a,
+ * with a gas in the case on the liquid side of the liquid-gas interface
+ * (Fuchs et al. 2022 Eq. 24, Remark 3: the denser phase takes the force)
+ *   f_a = sigma(T_a) kappa~_a grad c_a       (interface_colour_factor),
  * and the Marangoni force per volume (Russell Eqs. 3.33, 3.35) with the
  * free-surface-consistent temperature gradient (PHYSICS.md erratum 4)
  *   grad T_a = (1/Gamma_a) sum_b V_b (T_b - T_a) grad_a W_ab,
  *   f_a += d sigma/dT (grad T_a - (grad T_a . n^_a) n^_a) |n_a|,
- * add f_a / rho_a to the acceleration. Every particle gets its smoothed
+ * add f_a / rho_a to the acceleration (not of gas, which has colour 0 and
+ * adds nothing to these sums). Every particle gets its smoothed
  * curvature and sigma(T) (outputs; the capillary time step reads sigma). */
 KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *density,
                           GLOBAL const real *mass, GLOBAL const real *temperature,
@@ -231,6 +264,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         const real t_a = p.temperature ? temperature[a] : REAL(0.0);
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
         real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 19 (with a gas) */
         const real support2 = surface_support2(&p), support = sqrt(support2);
         real x_a[3];
         grid_point(position, a, x_a);
@@ -240,6 +274,13 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
             if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real r = sqrt(r2);
+            if (!colour_material(materials, material, b)) {
+                const real c = interface_colour_factor(mass[a], density[a], mass[b], density[b],
+                                                       smoothing_grad_factor(r, p.h));
+                for (int d = 0; d < 3; ++d)
+                    grad_c[d] += c * r_ab[d];
+                continue;
+            }
             const real v_b = mass[b] / density[b];
             if (normal_weight[b] > REAL(0.0)) {
                 const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
@@ -257,11 +298,11 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         const real sigma = surface_tension(materials, material[a], t_a, &d_sigma);
         curvature[a] = kappa;
         tension[a] = sigma;
-        if (kind[a] == KIND_FLUID && shepard[a] >= p.min_shepard) {
+        if (kind[a] == KIND_FLUID && colour_material(materials, material, a) && shepard[a] >= p.min_shepard) {
             real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             if (p.tension)
                 for (int d = 0; d < 3; ++d)
-                    force[d] = -sigma * kappa * normal[3 * a + d];
+                    force[d] = p.gas ? sigma * kappa * grad_c[d] : -sigma * kappa * normal[3 * a + d];
             if (p.marangoni) {
                 const real norm = normal_size(normal, a);
                 real n_hat[3];

@@ -17,6 +17,7 @@ typedef struct {
     int tension;                     /* 1: the normal (curvature) force */
     int marangoni;                   /* 1: the tangential force d sigma/dT grad_s T |n| */
     int temperature;                 /* 1: sigma depends on T (the temperature buffer is read) */
+    int gas;                         /* 1: the case has a gas (the CSF force of Fuchs et al. 2022 Eq. 24) */
 } surface_params;
 
 #endif

@@ -253,8 +253,9 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
                 const real v_b = mass[b] / density[b];
                 conduction += conduction_pair(k_a, conductivity[b], t_a, ghost_temperature[b], v_b, f * r2, r2, &p);
-                for (int d = 0; d < 3; ++d)
-                    grad_gamma[d] += v_b * f * r_ab[d];
+                if (!material_is_gas(materials, material[b])) /* the colour of kernels/colour.h */
+                    for (int d = 0; d < 3; ++d)
+                        grad_gamma[d] += v_b * f * r_ab[d];
                 if (heats) {
                     const int fluid_b = kind[b] == KIND_FLUID;
                     for (int i = 0; i < 3; ++i) {
@@ -273,7 +274,8 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                   : REAL(0.0);
         const real m_a = mass[a], temp_a = temperature[a];
         const int mat = material[a];
-        const real delta = wall_a ? REAL(0.0) : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
+        const real delta = wall_a || material_is_gas(materials, mat) ? REAL(0.0)
+                                                                     : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
         const real emissivity = thermal_material(table, mat)[THERMAL_EMISSIVITY];
         const real radiation = p.radiation ? radiation_loss(temp_a, emissivity, delta, &p) / rho_a : REAL(0.0);
         const real evaporation =

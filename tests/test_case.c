@@ -195,7 +195,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -203,6 +203,38 @@ static const bad_case bad_cases[] = {
     {"fluid shifting negative", BASE2 "fluid: {shifting: -1}\n",
      NAME ":17: 'fluid.shifting' must be in [0, 10], got -1"},
     {"fluid not a map", BASE2 "fluid: [1]\n", NAME ":17: 'fluid' must be a map, got a list"},
+    {"pressure gradient unknown form", BASE2 "fluid: {pressure_gradient: adami}\n",
+     NAME ":17: 'fluid.pressure_gradient' must be one of renormalised, symmetric, multiphase; got 'adami'"},
+    /* barrier forces (Fuchs et al. 2022 Eq. 34) */
+    {"barrier without stiffness", BASE2 "fluid:\n  barrier: {distance: 0.005}\n",
+     NAME ":18: missing required key 'stiffness' in fluid.barrier"},
+    {"barrier stiffness zero", BASE2 "fluid:\n  barrier: {stiffness: 0, distance: 0.005}\n",
+     NAME ":18: 'fluid.barrier.stiffness' must be > 0, got 0"},
+    {"barrier damping negative", BASE2 "fluid:\n  barrier: {stiffness: 1, damping: -1, distance: 0.005}\n",
+     NAME ":18: 'fluid.barrier.damping' must be >= 0, got -1"},
+    {"barrier distance beyond h", BASE2 "fluid:\n  barrier: {stiffness: 1, distance: 0.012}\n",
+     NAME ":18: 'fluid.barrier.distance' (0.012 m) must be below the smoothing length h_over_dx dx = 0.012 m"},
+    {"barrier unknown key", BASE2 "fluid:\n  barrier: {stiffness: 1, distance: 0.005, range: 1}\n",
+     NAME ":18: unknown key 'range' in fluid.barrier (allowed: stiffness, damping, distance)"},
+    /* a gas phase (Fuchs et al. 2022 Sec. 4.1) */
+    {"phase unknown", HEAD2 "materials:\n  - {name: water, density: 1, phase: vapour}\n" GEO_BOX,
+     NAME ":9: 'materials[0].phase' must be one of liquid, gas; got 'vapour'"},
+    {"gas that melts", HEAD2 "materials:\n  - {name: air, density: 1, phase: gas,\n     melting_temperature: 300, melting_range: 1}\n" GEO_BOX,
+     NAME ":10: material 'air' is a gas ('phase: gas'), which neither melts nor evaporates: it must not have 'materials[0].melting_temperature' (given here or by its preset)"},
+    {"gas that evaporates", HEAD2 "materials:\n  - {name: air, density: 1, phase: gas, preset: steel_fuchs}\n" GEO_BOX,
+     NAME ":9: material 'air' is a gas ('phase: gas'), which neither melts nor evaporates: it must not have 'materials[0].melting_temperature' (given here or by its preset)"},
+    {"gas with a recoil pressure", HEAD2 "materials:\n  - {name: air, density: 1, phase: gas, recoil_pressure_constant: 1}\n" GEO_BOX,
+     NAME ":9: material 'air' is a gas ('phase: gas'), which neither melts nor evaporates: it must not have 'materials[0].recoil_pressure_constant' (given here or by its preset)"},
+    {"gas without the multiphase force", HEAD2 "fluid: {}\nmaterials:\n  - {name: air, density: 1, sound_speed: 10, phase: gas}\n"
+     "geometry:\n  - {shape: box, kind: fluid, material: air, min: [0, 0], max: [1, 1]}\n",
+     NAME ":10: material 'air' is a gas: it needs the fluid module with 'fluid.pressure_gradient: multiphase' (Fuchs et al. 2022 Eq. 23)"},
+    {"gas wall", HEAD2 "materials:\n  - {name: air, density: 1, phase: gas}\n"
+     "geometry:\n  - {shape: box, kind: wall, material: air, min: [0, 0], max: [1, 1], layers: 3}\n",
+     NAME ":11: 'geometry[0].kind' must be fluid: material 'air' is a gas (its particles are fluid)"},
+    {"fill on the first block", BASE2 "    fill: true\n",
+     NAME ":17: 'geometry[0].fill' fills around the blocks before it, and this is the first block: list it after the shapes it surrounds"},
+    {"fill not a boolean", BASE2 "    fill: gas\n",
+     NAME ":17: 'geometry[0].fill' must be one of false, true; got 'gas'"},
     {"hydrostatic not a boolean", BASE2 "    hydrostatic: yes\n",
      NAME ":17: 'geometry[0].hydrostatic' must be one of false, true; got 'yes'"},
     {"viscosity negative",
@@ -607,6 +639,7 @@ static void check_default_values(const amsph_case *c)
     expect(c->n_materials == 1 && strcmp(c->materials[0].name, "water") == 0, "materials");
     expect(c->materials[0].density.n == 1 && near(c->materials[0].density.v[0], 1000), "density");
     expect(c->materials[0].viscosity == 0 && c->materials[0].sound_speed == 0, "material defaults");
+    expect(c->materials[0].phase == AMSPH_MATERIAL_LIQUID, "phase default");
     const amsph_geometry *g = &c->geometry[0];
     expect(c->n_geometry == 1, "n_geometry");
     expect(g->shape == AMSPH_SHAPE_BOX && g->kind == AMSPH_KIND_FLUID && g->material == 0, "box");
@@ -614,6 +647,7 @@ static void check_default_values(const amsph_case *c)
     expect(g->layers == 0 && g->open_faces == 0, "layers default");
     expect(vec_is(g->velocity, 0, 0, 0), "velocity default");
     expect(!g->has_temperature, "temperature not set");
+    expect(!g->fill, "fill default");
 }
 
 static void check_defaults(const amsph_case *c)
@@ -856,6 +890,24 @@ static void check_isothermal2d(const amsph_case *c)
            "T(t) of the ramp");
 }
 
+/* A droplet in a gas with barrier forces: the keys of the gas phase. */
+static const char gas2d[] = HEAD2 "fluid:\n  pressure_gradient: multiphase\n"
+                            "  barrier: {stiffness: 2, damping: 0.5, distance: 0.005}\n"
+                            "materials:\n  - {name: water, density: 1000, sound_speed: 10}\n"
+                            "  - {name: air, density: 10, sound_speed: 100, phase: gas}\n"
+                            "geometry:\n  - {shape: circle, kind: fluid, material: water, center: [0.5, 0.5], radius: 0.2}\n"
+                            "  - {shape: box, kind: fluid, material: air, min: [0, 0], max: [1, 1], fill: true}\n";
+
+static void check_gas2d(const amsph_case *c)
+{
+    const amsph_fluid_settings *f = &c->fluid;
+    expect(f->pressure_gradient == PRESSURE_MULTIPHASE, "pressure_gradient");
+    expect(near(f->barrier_stiffness, 2) && near(f->barrier_damping, 0.5) && near(f->barrier_distance, 0.005),
+           "barrier");
+    expect(c->materials[0].phase == AMSPH_MATERIAL_LIQUID && c->materials[1].phase == AMSPH_MATERIAL_GAS, "phase");
+    expect(!c->geometry[0].fill && c->geometry[1].fill, "fill");
+}
+
 typedef struct {
     const char *name;
     const char *text;
@@ -870,6 +922,7 @@ static const good_case good_cases[] = {
     {"2D laser, surface absorption, defaults", laser2d, check_laser2d},
     {"material presets", presets2d, check_presets2d},
     {"2D density table, temperature ramp", isothermal2d, check_isothermal2d},
+    {"2D droplet in a gas, barrier forces", gas2d, check_gas2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,
