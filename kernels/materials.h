@@ -23,11 +23,15 @@
 #define MATERIAL_BOILING_TEMPERATURE 12 /* T_v, K */
 #define MATERIAL_VAPOUR_HEAT 13        /* h_v - h(T_h,0) with h from 0 K (thermal_table.h), J/kg */
 #define MATERIAL_VAPOUR_FLUX 14        /* 0.82 c_s sqrt(C_M), sqrt(K) s/m */
+/* wetting (Fuchs et al. 2022 Sec. 3.3.3, Eqs. 27-29), kernels/surface.cl */
+#define MATERIAL_CONTACT_ANGLE 15   /* theta0 of the liquid on solids and walls, rad; 0: not set */
+#define MATERIAL_SOLID_COLOUR_LOW 16  /* a solid of the material is solid colour 1 below this, K */
+#define MATERIAL_SOLID_COLOUR_HIGH 17 /* ... and 0 at this (the solidus); <= LOW: always 1 */
 /* Reference density rho0(T): n points (T_i, rho0_i), T increasing, linear
  * between them and constant beyond the ends; n = 1: the constant rho0_0. */
 #define MATERIAL_TABLE_POINTS 16        /* AMSPH_MAX_TABLE of host/case.h */
-#define MATERIAL_DENSITY_POINTS 15      /* n, at most MATERIAL_TABLE_POINTS */
-#define MATERIAL_DENSITY_TEMPERATURE 16 /* T_i, K */
+#define MATERIAL_DENSITY_POINTS 18      /* n, at most MATERIAL_TABLE_POINTS */
+#define MATERIAL_DENSITY_TEMPERATURE 19 /* T_i, K */
 #define MATERIAL_DENSITY_VALUE (MATERIAL_DENSITY_TEMPERATURE + MATERIAL_TABLE_POINTS) /* rho0_i, kg/m^3 */
 #define MATERIAL_STRIDE (MATERIAL_DENSITY_VALUE + MATERIAL_TABLE_POINTS)
 
