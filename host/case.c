@@ -608,6 +608,19 @@ static const key_spec specs[] = {
     {.section = SEC_MATERIAL, .key = "evaporation_enthalpy_reference", .type = VT_NUMBER, .unit = "K",
      .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = MAT(evaporation_enthalpy_reference),
      .doc = "Reference temperature T_h,0 of the vapour's specific enthalpy h(T) - h(T_h,0) in Eq. 18"},
+    {.section = SEC_MATERIAL, .key = "contact_angle", .type = VT_NUMBER, .unit = "degree",
+     .flags = F_ABOVE_LO | F_UP_TO_HI | F_NO_DEFAULT, .lo = 0, .hi = 180, .offset = MAT(contact_angle),
+     .rule = "needs `surface`",
+     .doc = "Equilibrium contact angle θ0 that this liquid makes on solids and walls, measured "
+            "inside the liquid: its surface normals near the contact line are turned to the angle "
+            "(Fuchs et al. 2022 Eqs. 27-29); not set: the liquid wets completely (solids and "
+            "walls count as the same material)"},
+    {.section = SEC_MATERIAL, .key = "wetting_transition_range", .type = VT_NUMBER, .unit = "K",
+     .flags = F_ABOVE_LO, .lo = 0, .def = 5, .offset = MAT(wetting_transition_range),
+     .doc = "Temperature interval ΔT_s below the solidus over which a fixed solid of this melting "
+            "material fades out of the solid colour that the contact angle reads: weight 1 below "
+            "T_sol - ΔT_s, 0 at T_sol, where it melts (Fuchs et al. 2022 §3.3.3; 5 K in their "
+            "Table 1)"},
     {.section = SEC_TOP, .key = "geometry", .type = VT_LIST, .flags = F_REQUIRED, .lo = 1,
      .hi = AMSPH_MAX_GEOMETRY, .sub = SEC_GEOMETRY,
      .doc = "Bodies filled with particles"},
@@ -1725,10 +1738,22 @@ static int check_gas(parser *p)
     return 0;
 }
 
+/* A contact angle is a property of the surface module's free surfaces. */
+static int check_contact_angles(parser *p)
+{
+    for (int i = 0; i < p->c->n_materials; i++)
+        if (p->c->materials[i].contact_angle > 0 && !p->c->surface.enabled)
+            return fail(p, p->material_line[i],
+                        "material '%s' has a 'contact_angle', which needs the surface module (a "
+                        "'surface:' section)",
+                        p->c->materials[i].name);
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
-    if (finish_grains(p) || check_gas(p))
+    if (finish_grains(p) || check_gas(p) || check_contact_angles(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;

@@ -102,6 +102,11 @@ typedef struct {
     double sticking_coefficient;           /* c_s, default 1 */
     double evaporation_enthalpy_reference; /* T_h,0 of h(T) in Eq. 18, K, default 0 */
     int phase; /* AMSPH_MATERIAL_LIQUID or _GAS: a gas is a fluid phase of its own (Fuchs et al. 2022 Sec. 4.1) */
+    /* wetting (Fuchs et al. 2022 Sec. 3.3.3; kernels/surface.cl) */
+    double contact_angle;            /* theta0 of this liquid on solids and walls, degrees;
+                                        0: not set (the liquid wets completely) */
+    double wetting_transition_range; /* dT_s: a solid of this material fades out of the solid
+                                        colour over [T_sol - dT_s, T_sol], K, default 5 */
 } amsph_material;
 
 /* Faces of a box, as bits of amsph_geometry.open_faces: bit 2d is the face at

@@ -50,6 +50,21 @@ static void evaporation_row(const amsph_material *m, amsph_real *row)
     row[MATERIAL_VAPOUR_FLUX] = (amsph_real)(0.82 * m->sticking_coefficient * sqrt(m->vapour_mass_constant));
 }
 
+/* The constants of the contact angle (kernels/surface.cl) of one material:
+ * theta0 in radians, and the temperatures between which a fixed solid of
+ * a melting material fades from solid colour 1 to 0 (Fuchs et al. 2022
+ * Sec. 3.3.3: chi = f-bar[T, T_sol - dT_s, T_sol]; amsph's solid melts at
+ * the solidus, host/thermal.c). */
+static void wetting_row(const amsph_material *m, amsph_real *row)
+{
+    row[MATERIAL_CONTACT_ANGLE] = (amsph_real)(m->contact_angle * 3.14159265358979323846 / 180.0);
+    if (m->melting_temperature > 0) {
+        const double solidus = m->melting_temperature - 0.5 * m->melting_range;
+        row[MATERIAL_SOLID_COLOUR_LOW] = (amsph_real)(solidus - m->wetting_transition_range);
+        row[MATERIAL_SOLID_COLOUR_HIGH] = (amsph_real)solidus;
+    }
+}
+
 static int upload_materials(amsph_sim *s)
 {
     const amsph_case *c = &s->config;
@@ -63,6 +78,7 @@ static int upload_materials(amsph_sim *s)
         row[MATERIAL_GAS] = mat->phase == AMSPH_MATERIAL_GAS;
         surface_tension_row(mat, row);
         evaporation_row(mat, row);
+        wetting_row(mat, row);
         row[MATERIAL_DENSITY_POINTS] = (amsph_real)mat->density.n;
         for (int i = 0; i < mat->density.n; ++i) {
             row[MATERIAL_DENSITY_TEMPERATURE + i] = (amsph_real)mat->density.T[i];

@@ -29,10 +29,13 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     for (int m = 0; m < s->config.n_materials; ++m) {
         const amsph_material *mat = &s->config.materials[m];
         p->temperature |= mat->surface_tension_slope != 0 || mat->surfactant_excess > 0;
+        p->wetting |= mat->contact_angle > 0;
     }
     p->temperature |= p->marangoni;
     for (int m = 0; m < s->config.n_materials; ++m)
         p->gas |= s->config.materials[m].phase == AMSPH_MATERIAL_GAS;
+    /* the solid colour of a melting solid follows its temperature, where there is one */
+    p->temperature |= p->wetting && h->data[AMSPH_FIELD_TEMPERATURE] != NULL;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
         AMSPH_CHECK(amsph_host_add_field(h, fields[k]));
     return 0;
@@ -82,10 +85,19 @@ int amsph_surface_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_MATERIAL), cells,
                              amsph_arg_int(n), grid, cell_start, materials, params, field(s, AMSPH_FIELD_NORMAL),
                              field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
+    if (s->surface.wetting)
+        AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_wetting", n, field(s, AMSPH_FIELD_POSITION),
+                                 field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
+                                 field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
+                                 field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                                 temperature(s), amsph_arg_buffer(s->materials), cells,
+                                 amsph_arg_int(n), grid, cell_start, params,
+                                 field(s, AMSPH_FIELD_UNIT_NORMAL)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_curvature", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
-                             cells, amsph_arg_int(n), grid,
+                             field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                             amsph_arg_buffer(s->materials), cells, amsph_arg_int(n), grid,
                              cell_start, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
     return AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), temperature(s),

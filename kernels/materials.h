@@ -25,11 +25,15 @@
 #define MATERIAL_VAPOUR_FLUX 14        /* 0.82 c_s sqrt(C_M), sqrt(K) s/m */
 /* 1: a gas (materials[].phase; Fuchs et al. 2022 Sec. 4.1), 0: liquid or solid */
 #define MATERIAL_GAS 15
+/* wetting (Fuchs et al. 2022 Sec. 3.3.3, Eqs. 27-29), kernels/surface.cl */
+#define MATERIAL_CONTACT_ANGLE 16   /* theta0 of the liquid on solids and walls, rad; 0: not set */
+#define MATERIAL_SOLID_COLOUR_LOW 17  /* a solid of the material is solid colour 1 below this, K */
+#define MATERIAL_SOLID_COLOUR_HIGH 18 /* ... and 0 at this (the solidus); <= LOW: always 1 */
 /* Reference density rho0(T): n points (T_i, rho0_i), T increasing, linear
  * between them and constant beyond the ends; n = 1: the constant rho0_0. */
 #define MATERIAL_TABLE_POINTS 16        /* AMSPH_MAX_TABLE of host/case.h */
-#define MATERIAL_DENSITY_POINTS 16      /* n, at most MATERIAL_TABLE_POINTS */
-#define MATERIAL_DENSITY_TEMPERATURE 17 /* T_i, K */
+#define MATERIAL_DENSITY_POINTS 19      /* n, at most MATERIAL_TABLE_POINTS */
+#define MATERIAL_DENSITY_TEMPERATURE 20 /* T_i, K */
 #define MATERIAL_DENSITY_VALUE (MATERIAL_DENSITY_TEMPERATURE + MATERIAL_TABLE_POINTS) /* rho0_i, kg/m^3 */
 #define MATERIAL_STRIDE (MATERIAL_DENSITY_VALUE + MATERIAL_TABLE_POINTS)
 

@@ -11,9 +11,21 @@
  * the void, and the CSF force acts on the liquid side of a liquid-gas
  * interface (the denser phase, as Fuchs et al. 2022 Remark 3 has it). The terms use their own smoothing length h_st
  * (surface_params.h; Russell: 1.5 times the fluid's), so their pair loops
- * reach p.reach cells around a particle's cell. Four gathers:
+ * reach p.reach cells around a particle's cell.
+ *
+ * A liquid whose material has a contact angle theta0 (p.wetting) meets
+ * solids and walls at that angle (Fuchs et al. 2022 Sec. 3.3.3): near them
+ * its normals are turned to the angle (Eqs. 27-29, surface_normal), and its
+ * curvature and the curvature's smoothing sum over liquid particles only,
+ * so the free face of a solid or wall beside the drop (a solid-void surface,
+ * not the liquid's) does not bend the liquid's normal field. Its colour
+ * gradient still counts solids and walls as material: in this single-phase
+ * model the gas is the void, and the wetted base, where the liquid touches
+ * the solid, is no liquid-gas surface. The gathers:
  *   surface_shepard    Gamma_a = sum_b V_b W_ab
  *   surface_normal     n_a (Eq. 3.26)
+ *   surface_wetting    n^_a turned to the contact angle (Fuchs Eqs. 27-29; only
+ *                      with p.wetting)
  *   surface_curvature  kappa_a of the particles with a normal (Eqs. 3.27-3.29, cap)
  *   surface_force      smoothed kappa (Eq. 3.30), the CSF force (Eq. 3.31) and
  *                      the Marangoni force (Eq. 3.35) on fluid particles.
@@ -72,6 +84,91 @@ static inline real surface_tension(GLOBAL const real *materials, int material, r
 static inline real surface_support2(const surface_params *p)
 {
     return SUPPORT_OVER_H * SUPPORT_OVER_H * p->h * p->h;
+}
+
+/* The linear transition function f[x, x1, x2] of Fuchs et al. 2022 Eq. 21:
+ * 0 below x1, 1 above x2, linear between (x1 < x2). */
+static inline real transition(real x, real x1, real x2)
+{
+    return fmin(fmax((x - x1) / (x2 - x1), REAL(0.0)), REAL(1.0));
+}
+
+/* The correction of the normals reaches from c_sf = WETTING_C1 (f = 0) to
+ * full at c_sf = WETTING_C2 (Fuchs et al. 2022 Eq. 29: c1 = 0, c2 = 0.2);
+ * vectors of a dimensionless size below WETTING_EPSILON have no direction
+ * (Fuchs's epsilon of Eqs. 20, 28, 29). */
+#define WETTING_C1 REAL(0.0)
+#define WETTING_C2 REAL(0.2)
+#define WETTING_EPSILON REAL(1e-6)
+
+/* theta0 of particle a (rad) where a is a liquid whose material has a
+ * contact angle; 0 elsewhere (and always without p.wetting). */
+static inline real contact_angle(GLOBAL const int *kind, GLOBAL const int *material,
+                                 GLOBAL const real *materials, const surface_params *p, int a)
+{
+    return p->wetting && kind[a] == KIND_FLUID ? material_value(materials, material[a], MATERIAL_CONTACT_ANGLE)
+                                               : REAL(0.0);
+}
+
+/* Whether neighbour b enters the curvature of a liquid with a contact
+ * angle (theta0 > 0): liquid only; every particle otherwise. */
+static inline int shapes_curvature(real theta0, int kind_b)
+{
+    return theta0 <= REAL(0.0) || kind_b == KIND_FLUID;
+}
+
+/* The solid colour chi_b of particle b (Fuchs et al. 2022 Sec. 3.3.3):
+ * 1 on walls, 0 on fluid; on a fixed solid of a melting material
+ * f-bar[T_b, T_sol - dT_s, T_sol] (Eq. 21), so that the colour fades out
+ * before the solid melts (at the solidus it turns fluid, host/thermal.c)
+ * instead of jumping; 1 where the material does not melt or the case has
+ * no temperatures. */
+static inline real solid_colour(int kind_b, int material_b, real t_b, GLOBAL const real *materials,
+                                int temperature)
+{
+    if (kind_b == KIND_FLUID)
+        return REAL(0.0);
+    const real low = material_value(materials, material_b, MATERIAL_SOLID_COLOUR_LOW);
+    const real high = material_value(materials, material_b, MATERIAL_SOLID_COLOUR_HIGH);
+    if (kind_b == KIND_WALL || !temperature || !(high > low))
+        return REAL(1.0);
+    return REAL(1.0) - transition(t_b, low, high);
+}
+
+/* Unit vector of v into u; 0 where |v| scale <= WETTING_EPSILON. */
+static inline void wetting_unit(const real v[3], real scale, real u[3])
+{
+    const real size = sqrt(dot3(v, v));
+    for (int d = 0; d < 3; ++d)
+        u[d] = size * scale > WETTING_EPSILON ? v[d] / size : REAL(0.0);
+}
+
+/* The unit normal n (inward, this module's convention) of a liquid particle
+ * near solids, turned towards the contact angle theta0 after Fuchs et al.
+ * 2022 Eqs. 27-29 in their outward convention (n_lg = -n):
+ *   n_sf = grad c_sf / |grad c_sf|        (Eqs. 19-20: from the liquid into the solid)
+ *   t_sf = n_lg - (n_lg . n_sf) n_sf, normalised            (Eq. 28)
+ *   n^_lg = t_sf sin theta0 - n_sf cos theta0               (Eq. 27)
+ *   n <- -(f[c_sf, c1, c2] n^_lg + f-bar[c_sf, c1, c2] n_lg), normalised (Eq. 29)
+ * with n_lg = g / |g|, g the smoothed outward colour gradient of
+ * surface_wetting (in place of the particle's own normal: see there); h
+ * makes |grad c_sf| and |g| (1/m) dimensionless for the epsilon tests. */
+static inline void wetted_normal(real theta0, real c_sf, const real grad_sf[3], const real g[3],
+                                 real h, real n[3])
+{
+    real n_sf[3], n_lg[3], t_tilde[3], t_sf[3], blend[3];
+    wetting_unit(grad_sf, h, n_sf);
+    wetting_unit(g, h, n_lg);
+    const real along = dot3(n_lg, n_sf);
+    for (int d = 0; d < 3; ++d)
+        t_tilde[d] = n_lg[d] - along * n_sf[d];
+    wetting_unit(t_tilde, REAL(1.0), t_sf);
+    const real f = transition(c_sf, WETTING_C1, WETTING_C2);
+    for (int d = 0; d < 3; ++d)
+        blend[d] = f * (t_sf[d] * sin(theta0) - n_sf[d] * cos(theta0)) + (REAL(1.0) - f) * n_lg[d];
+    wetting_unit(blend, REAL(1.0), n_lg);
+    for (int d = 0; d < 3; ++d)
+        n[d] = -n_lg[d];
 }
 
 static inline real normal_size(GLOBAL const real *normal, int a)
@@ -172,22 +269,93 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
     }
 }
 
+/* Wetting (Fuchs et al. 2022 Sec. 3.3.3), on each liquid particle with a
+ * contact angle theta0 and a normal (psi_a > 0), after surface_normal:
+ *   c_sf = (1/V_a) sum_b chi_b (V_a^2 + V_b^2) rho_a / (rho_a + rho_b) W_ab
+ * over the solids and walls b (Eq. 19 with chi_b = solid_colour; grad c_sf
+ * with grad_a W_ab in place of W_ab), and
+ *   g_a = -sum_b V_b W_ab n_b
+ * over the liquid b (b = a too): the outward colour gradients around a,
+ * smoothed, which stand for the liquid-gas normal n_lg in the tangent t_sf
+ * (Eq. 28) and the blend (Eq. 29). Fuchs takes the particle's own normal;
+ * on a wetted base within a support of the contact line that normal is
+ * short and points mostly away from the wall, so the sign of its part along
+ * the wall is noise and neighbours got opposite tangents (capped curvature,
+ * a drop that tore off its wall), and a row above it the lobe of Eq. 3.26
+ * (surface_normal) points out of the liquid; the surface particles at the
+ * contact line, whose colour gradients are largest, decide g_a. The unit
+ * normal n^_a turns towards theta0 (wetted_normal); n_a, the colour gradient
+ * that carries the CSF force (Fuchs Eq. 24: grad c, not the corrected
+ * normal), stays. */
+KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *density,
+                            GLOBAL const real *mass, GLOBAL const real *normal,
+                            GLOBAL const real *normal_weight, GLOBAL const int *kind,
+                            GLOBAL const int *material, GLOBAL const real *temperature,
+                            GLOBAL const real *materials, GLOBAL const int *cell, int n,
+                            grid_geometry g, GLOBAL const int *cell_start, surface_params p,
+                            GLOBAL real *unit_normal)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        const real theta0 = contact_angle(kind, material, materials, &p, a);
+        if (theta0 > REAL(0.0) && normal_weight[a] > REAL(0.0)) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            const real v_a = mass[a] / density[a];
+            real x_a[3];
+            grid_point(position, a, x_a);
+            real c_sf = REAL(0.0);
+            real grad_sf[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, outward[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
+                const real r = sqrt(r2), v_b = mass[b] / density[b];
+                if (kind[b] == KIND_FLUID) {
+                    for (int d = 0; d < 3; ++d)
+                        outward[d] -= v_b * smoothing_w(r, p.h) * normal[3 * b + d];
+                    continue;
+                }
+                const real t_b = p.temperature ? temperature[b] : REAL(0.0);
+                const real chi = solid_colour(kind[b], material[b], t_b, materials, p.temperature) *
+                                 (v_a * v_a + v_b * v_b) / v_a * density[a] / (density[a] + density[b]);
+                c_sf += chi * smoothing_w(r, p.h);
+                for (int d = 0; d < 3; ++d)
+                    grad_sf[d] += chi * smoothing_grad_factor(r, p.h) * r_ab[d];
+            }
+            if (c_sf > WETTING_C1) {
+                real n_hat[3];
+                for (int d = 0; d < 3; ++d)
+                    n_hat[d] = unit_normal[3 * a + d];
+                wetted_normal(theta0, c_sf, grad_sf, outward, p.h, n_hat);
+                for (int d = 0; d < 3; ++d)
+                    unit_normal[3 * a + d] = n_hat[d];
+            }
+        }
+    }
+}
+
 /* Curvature of the particles with a normal (psi_a > 0), over the neighbours
  * with one (Russell 2018 Eqs. 3.28, 3.29; Morris 2000 sums over those only):
  *   Gamma*_a = sum_b psi_b V_b W_ab,
  *   kappa_a  = (1/Gamma*_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
  * capped at |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4); 0 elsewhere.
- * With the inward normal, a convex surface has kappa < 0 (a circle: -1/R). */
+ * With the inward normal, a convex surface has kappa < 0 (a circle: -1/R).
+ * A liquid with a contact angle sums over liquid b only (shapes_curvature). */
 KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *density,
                               GLOBAL const real *mass, GLOBAL const real *unit_normal,
-                              GLOBAL const real *normal_weight, GLOBAL const int *cell, int n,
-                              grid_geometry g,
+                              GLOBAL const real *normal_weight, GLOBAL const int *kind,
+                              GLOBAL const int *material, GLOBAL const real *materials,
+                              GLOBAL const int *cell, int n, grid_geometry g,
                               GLOBAL const int *cell_start, surface_params p,
                               GLOBAL real *curvature)
 {
     FOR_EACH_ITEM(a, n)
     {
         real kappa = REAL(0.0);
+        const real theta0 = contact_angle(kind, material, materials, &p, a);
         if (normal_weight[a] > REAL(0.0)) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
@@ -197,7 +365,7 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
             real gamma_star = REAL(0.0), divergence = REAL(0.0);
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
-                if (normal_weight[b] <= REAL(0.0))
+                if (normal_weight[b] <= REAL(0.0) || !shapes_curvature(theta0, kind[b]))
                     continue;
                 real r_ab[3], r2;
                 if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
@@ -246,7 +414,9 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
  *   f_a += d sigma/dT (grad T_a - (grad T_a . n^_a) n^_a) |n_a|,
  * add f_a / rho_a to the acceleration (not of gas, which has colour 0 and
  * adds nothing to these sums). Every particle gets its smoothed
- * curvature and sigma(T) (outputs; the capillary time step reads sigma). */
+ * curvature and sigma(T) (outputs; the capillary time step reads sigma).
+ * A liquid with a contact angle smooths over liquid b only (shapes_curvature);
+ * its n_a is the turned normal of surface_normal. */
 KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *density,
                           GLOBAL const real *mass, GLOBAL const real *temperature,
                           GLOBAL const int *kind, GLOBAL const int *material,
@@ -262,6 +432,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         const real t_a = p.temperature ? temperature[a] : REAL(0.0);
+        const real theta0 = contact_angle(kind, material, materials, &p, a);
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
         real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 19 (with a gas) */
@@ -282,7 +453,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
                 continue;
             }
             const real v_b = mass[b] / density[b];
-            if (normal_weight[b] > REAL(0.0)) {
+            if (normal_weight[b] > REAL(0.0) && shapes_curvature(theta0, kind[b])) {
                 const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
                 gamma_star += w;
                 kappa_sum += w * raw_curvature[b];

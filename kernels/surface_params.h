@@ -16,8 +16,11 @@ typedef struct {
     int reach;                       /* cells the surface support spans from a particle's cell */
     int tension;                     /* 1: the normal (curvature) force */
     int marangoni;                   /* 1: the tangential force d sigma/dT grad_s T |n| */
-    int temperature;                 /* 1: sigma depends on T (the temperature buffer is read) */
+    int temperature;                 /* 1: sigma or the solid colour depends on T (the temperature
+                                        buffer is read) */
     int gas;                         /* 1: the case has a gas (the CSF force of Fuchs et al. 2022 Eq. 24) */
+    int wetting;                     /* 1: a material has a contact angle (Fuchs et al. 2022
+                                        Eqs. 27-29); 0: every particle is one colour */
 } surface_params;
 
 #endif
