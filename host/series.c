@@ -57,6 +57,7 @@ static double sim_dt(const amsph_series_sample *x) { return x->sim->dt; }
 static double fluid_particles(const amsph_series_sample *x) { return count_kind(x, AMSPH_KIND_FLUID); }
 static double wall_particles(const amsph_series_sample *x) { return count_kind(x, AMSPH_KIND_WALL); }
 static double solid_particles(const amsph_series_sample *x) { return count_kind(x, AMSPH_KIND_SOLID); }
+static double grain_particles(const amsph_series_sample *x) { return count_kind(x, AMSPH_KIND_GRAIN); }
 static double removed(const amsph_series_sample *x) { return (double)x->sim->particles.removed; }
 static double max_temperature(const amsph_series_sample *x) { return max_of(x, AMSPH_FIELD_TEMPERATURE); }
 static double momentum_x(const amsph_series_sample *x) { return momentum(x, 0); }
@@ -141,6 +142,7 @@ const amsph_series_column amsph_series_columns[] = {
     {"fluid_particles", "1", "Fluid particles", fluid_particles},
     {"wall_particles", "1", "Wall particles", wall_particles},
     {"solid_particles", "1", "Fixed-solid particles", solid_particles},
+    {"grain_particles", "1", "Particles of mobile grains (the grains module)", grain_particles},
     {"removed_particles", "1", "Particles removed for leaving the domain, since the start", removed},
     {"max_speed", "m/s", "Largest particle speed", max_speed},
     {"max_temperature", "K", "Largest temperature; empty when the case has no temperatures", max_temperature},
