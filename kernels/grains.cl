@@ -25,6 +25,19 @@ static inline void grain_vector(GLOBAL const real *grains, int k, int field, rea
         v[d] = grains[GRAIN_RECORD * k + field + d];
 }
 
+/* The motion of particle r's grain: its centre, velocity and angular
+ * velocity, and r's arm r_r - r_k. */
+static inline void grain_motion(GLOBAL const real *grains, GLOBAL const int *grain, GLOBAL const real *position,
+                                int r, real centre[3], real u[3], real w[3], real arm[3])
+{
+    const int k = grain[r];
+    grain_vector(grains, k, GRAIN_CENTRE, centre);
+    grain_vector(grains, k, GRAIN_VELOCITY, u);
+    grain_vector(grains, k, GRAIN_SPIN, w);
+    for (int d = 0; d < 3; ++d)
+        arm[d] = position[3 * r + d] - centre[d];
+}
+
 /* x = I^-1 y for the symmetric inertia I (xx, yy, zz, xy, xz, yz), by
  * Cramer's rule; in 2D only the z components take part. */
 static inline void inertia_solve(GLOBAL const real *i6, const real y[3], real x[3])
@@ -92,13 +105,8 @@ KERNEL void grain_particle_velocity(GLOBAL const int *kind, GLOBAL const int *gr
     FOR_EACH_ITEM(r, n)
     {
         if (kind[r] == KIND_GRAIN) {
-            const int k = grain[r];
             real centre[3], u[3], w[3], arm[3], spin_part[3];
-            grain_vector(grains, k, GRAIN_CENTRE, centre);
-            grain_vector(grains, k, GRAIN_VELOCITY, u);
-            grain_vector(grains, k, GRAIN_SPIN, w);
-            for (int d = 0; d < 3; ++d)
-                arm[d] = position[3 * r + d] - centre[d];
+            grain_motion(grains, grain, position, r, centre, u, w, arm);
             cross3(w, arm, spin_part);
             for (int d = 0; d < 3; ++d)
                 velocity[3 * r + d] = u[d] + spin_part[d];
@@ -136,15 +144,10 @@ KERNEL void grain_drift(GLOBAL const int *kind, GLOBAL const int *grain, int n,
     FOR_EACH_ITEM(r, n)
     {
         if (kind[r] == KIND_GRAIN) {
-            const int k = grain[r];
             real centre[3], u[3], theta[3], arm[3], turned[3];
-            grain_vector(grains, k, GRAIN_CENTRE, centre);
-            grain_vector(grains, k, GRAIN_VELOCITY, u);
-            grain_vector(grains, k, GRAIN_SPIN, theta);
-            for (int d = 0; d < 3; ++d) {
+            grain_motion(grains, grain, position, r, centre, u, theta, arm);
+            for (int d = 0; d < 3; ++d)
                 theta[d] *= dt;
-                arm[d] = position[3 * r + d] - centre[d];
-            }
             rotate(theta, arm, turned);
             for (int d = 0; d < AMSPH_DIM; ++d)
                 position[3 * r + d] = centre[d] + u[d] * dt + turned[d];

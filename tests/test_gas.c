@@ -15,31 +15,13 @@
 
 #include "sim.h"
 #include "testing.h"
+#include "testing_run.h"
 
 static int parse(const char *text, amsph_case *c)
 {
     char err[512];
     const int status = amsph_case_parse(text, strlen(text), "gas.yaml", c, err, sizeof err);
     CHECK(status == 0, "%s", err);
-    return status;
-}
-
-/* Runs case c on backend k from its start to `until` and downloads the
- * particles; non-zero where the backend is missing or the run failed. */
-static int run_case(const amsph_case *c, int k, double until, amsph_host_particles *h)
-{
-    amsph_backend *b = testing_backend(k);
-    if (!b)
-        return 1;
-    amsph_sim s;
-    int status = amsph_sim_create(c, b, &s);
-    if (status == 0 && until > 0.0)
-        status = amsph_sim_advance(&s, until, NULL, NULL);
-    CHECK(status == 0, "%s", amsph_last_error());
-    if (status == 0)
-        status = amsph_particles_download(&s.particles, h);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
     return status;
 }
 
@@ -70,7 +52,7 @@ static void check_barrier_pair(double stiffness, double damping, double u)
     snprintf(text, sizeof text, pair_case, stiffness, damping, u, -u);
     amsph_case c;
     amsph_host_particles h = {0};
-    if (parse(text, &c) || run_case(&c, 0, 0.0, &h))
+    if (parse(text, &c) || testing_run_case(&c, 0, 0.0, &h))
         return;
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
     const amsph_real *acc = amsph_host_real(&h, AMSPH_FIELD_ACCELERATION);
@@ -115,7 +97,7 @@ static void test_fill(void)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (testing_load_case("young_laplace_gas_2d.yaml", &c) || run_case(&c, 0, 0.0, &h))
+    if (testing_load_case("young_laplace_gas_2d.yaml", &c) || testing_run_case(&c, 0, 0.0, &h))
         return;
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
     const double side = c.domain_max[0] - c.domain_min[0];
@@ -163,7 +145,7 @@ static void test_droplet(void)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (testing_load_case("young_laplace_gas_2d.yaml", &c) || run_case(&c, 0, c.end_time, &h))
+    if (testing_load_case("young_laplace_gas_2d.yaml", &c) || testing_run_case(&c, 0, c.end_time, &h))
         return;
     const double jump = mean_pressure(&h, 0, 0.0, 0.5) - mean_pressure(&h, 1, 1.3, 10.0), speed = max_speed(&h);
     printf("droplet in gas: pressure jump %.4f Pa (sigma/R = 10), error %+.2f%%, largest speed %.2e m/s\n", jump,
@@ -180,7 +162,7 @@ static void test_column(void)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (testing_load_case("hydrostatic_gas_2d.yaml", &c) || run_case(&c, 0, c.end_time, &h))
+    if (testing_load_case("hydrostatic_gas_2d.yaml", &c) || testing_run_case(&c, 0, c.end_time, &h))
         return;
     const double g = 9.81, h_l = 0.5, h_g = 0.25, rho_l = 1000.0, rho_g = 10.0, p_b = c.fluid.background_pressure;
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION), *p = amsph_host_real(&h, AMSPH_FIELD_PRESSURE);
@@ -218,7 +200,7 @@ static void test_backends_agree(void)
     if (testing_load_case("young_laplace_gas_2d.yaml", &c))
         return;
     for (int k = 0; k < TESTING_BACKENDS; ++k)
-        have += !run_case(&c, k, 0.0, &h[k]);
+        have += !testing_run_case(&c, k, 0.0, &h[k]);
     for (size_t f = 0; f < sizeof fields / sizeof fields[0] && have == TESTING_BACKENDS; ++f) {
         const int comps = amsph_fields[fields[f]].components;
         const amsph_real *a = amsph_host_real(&h[0], fields[f]), *o = amsph_host_real(&h[1], fields[f]);

@@ -18,6 +18,7 @@
 
 #include "sim.h"
 #include "testing.h"
+#include "testing_run.h"
 
 static int parse(const char *text, amsph_case *c)
 {
@@ -31,26 +32,6 @@ static int download(amsph_sim *s, amsph_host_particles *h)
 {
     const int status = amsph_particles_download(&s->particles, h);
     CHECK(status == 0, "%s", amsph_last_error());
-    return status;
-}
-
-/* Runs case c on backend k (0: OpenMP, 1: OpenCL) from its start to time
- * `until` (0: the initial state) and downloads the particles into h;
- * non-zero where the backend is missing or the run failed (a failed check). */
-static int run_case(const amsph_case *c, int k, double until, amsph_host_particles *h)
-{
-    amsph_backend *b = testing_backend(k);
-    if (!b)
-        return 1;
-    amsph_sim s;
-    int status = amsph_sim_create(c, b, &s);
-    if (status == 0 && until > 0.0)
-        status = amsph_sim_advance(&s, until, NULL, NULL);
-    CHECK(status == 0, "%s", amsph_last_error());
-    if (status == 0)
-        status = download(&s, h);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
     return status;
 }
 
@@ -77,7 +58,7 @@ static void test_flat_surface(void)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (!parse(slab_case, &c) && !run_case(&c, 0, 0.0, &h)) {
+    if (!parse(slab_case, &c) && !testing_run_case(&c, 0, 0.0, &h)) {
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
         const amsph_real *n = amsph_host_real(&h, AMSPH_FIELD_NORMAL);
         const amsph_real *kappa = amsph_host_real(&h, AMSPH_FIELD_CURVATURE);
@@ -142,7 +123,7 @@ static void test_surface_tension_law(void)
                          k, k, temperature[k]);
     amsph_case c;
     amsph_host_particles h = {0};
-    if (!parse(text, &c) && !run_case(&c, 0, 0.0, &h)) {
+    if (!parse(text, &c) && !testing_run_case(&c, 0, 0.0, &h)) {
         const amsph_real *t = amsph_host_real(&h, AMSPH_FIELD_TEMPERATURE);
         const amsph_real *sigma = amsph_host_real(&h, AMSPH_FIELD_SURFACE_TENSION);
         double worst = 0.0;
@@ -206,7 +187,7 @@ static void check_young_laplace(const char *file, double tolerance, double speed
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (!testing_load_case(file, &c) && !run_case(&c, 0, c.end_time, &h)) {
+    if (!testing_load_case(file, &c) && !testing_run_case(&c, 0, c.end_time, &h)) {
         const double expected = (c.dim - 1) * 10.0;
         double pressure, speed;
         droplet_state(&h, 1.0, &pressure, &speed);
@@ -242,7 +223,7 @@ static void test_square_droplet(void)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (!testing_load_case("square_droplet_2d.yaml", &c) && !run_case(&c, 0, c.end_time, &h)) {
+    if (!testing_load_case("square_droplet_2d.yaml", &c) && !testing_run_case(&c, 0, c.end_time, &h)) {
         enum { SECTORS = 36 };
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
         const amsph_real *v = amsph_host_real(&h, AMSPH_FIELD_VELOCITY);
@@ -386,7 +367,7 @@ static void test_contact_line_normal(double theta0)
 {
     amsph_case c;
     amsph_host_particles h = {0};
-    if (!sessile_case(theta0, 1.0, &c) && !run_case(&c, 0, 0.0, &h)) {
+    if (!sessile_case(theta0, 1.0, &c) && !testing_run_case(&c, 0, 0.0, &h)) {
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
         const amsph_real *n = amsph_host_real(&h, AMSPH_FIELD_UNIT_NORMAL);
         const int *kind = (const int *)h.data[AMSPH_FIELD_KIND];
@@ -459,7 +440,7 @@ static void test_sessile_droplet(void)
     for (size_t k = 0; k < sizeof runs / sizeof runs[0]; ++k) {
         amsph_case c;
         amsph_host_particles h = {0};
-        if (!sessile_case(runs[k].theta0, runs[k].end_time, &c) && !run_case(&c, 0, c.end_time, &h)) {
+        if (!sessile_case(runs[k].theta0, runs[k].end_time, &c) && !testing_run_case(&c, 0, c.end_time, &h)) {
             const double angle = sessile_angle(&h, c.dx);
             printf("sessile droplet: theta0 %g, contact angle %.2f degrees at %g s\n", runs[k].theta0, angle,
                    c.end_time);
@@ -483,7 +464,7 @@ static void check_backends_agree(const char *file)
     if (testing_load_case(file, &c))
         return;
     for (int k = 0; k < TESTING_BACKENDS; ++k)
-        have += !run_case(&c, k, 0.05, &h[k]);
+        have += !testing_run_case(&c, k, 0.05, &h[k]);
     for (size_t f = 0; f < sizeof fields / sizeof fields[0] && have == TESTING_BACKENDS; ++f) {
         const int comps = amsph_fields[fields[f]].components;
         const amsph_real *a = amsph_host_real(&h[0], fields[f]), *o = amsph_host_real(&h[1], fields[f]);
