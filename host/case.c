@@ -318,7 +318,8 @@ static const key_spec specs[] = {
      .doc = "Guard: two particles closer than this times dx stop the run"},
     {.section = SEC_FLUID, .key = "max_density_error", .type = VT_NUMBER, .flags = F_ABOVE_LO,
      .lo = 0, .def = 0.1, .offset = FLUID(max_density_error),
-     .doc = "Guard: |rho - rho0| / rho0 above this stops the run"},
+     .doc = "Guard: |rho - rho0| / rho0 above this stops the run; with `clamp_negative_pressure`, "
+            "(rho - rho0) / rho0 (an expanded particle has no pressure then)"},
     {.section = SEC_FLUID, .key = "damping_rate", .type = VT_NUMBER, .unit = "1/s",
      .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = FLUID(damping_rate),
      .doc = "Relaxation to rest: fluid velocities decay as exp(-rate t) until `damping_end`"},

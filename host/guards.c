@@ -67,7 +67,8 @@ int amsph_guards_check(amsph_sim *s)
                              amsph_arg_buffer(p->field[AMSPH_FIELD_REFERENCE_DENSITY]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_buffer(s->closest),
                              amsph_arg_int(p->n), amsph_arg_real(f->min_pair_distance * s->config.dx),
-                             amsph_arg_real(f->max_density_error), amsph_arg_buffer(s->work)));
+                             amsph_arg_real(f->max_density_error), amsph_arg_int(f->clamp_negative_pressure),
+                             amsph_arg_buffer(s->work)));
     double worst = 0.0;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &worst));
     if (worst == GUARD_OK)

@@ -1,6 +1,9 @@
 /* Run guards: per particle, the first check it fails, as a code the host
  * reduces with a maximum:
- *   GUARD_DENSITY   |rho - rho0(T)| / rho0(T) above the bound (fluid)
+ *   GUARD_DENSITY   |rho - rho0(T)| / rho0(T) above the bound (fluid); with
+ *                   negative pressures clamped, (rho - rho0) / rho0 only: an
+ *                   expanded particle then has no pressure and pushes nothing
+ *                   (spray torn off a droplet keeps the density it left with)
  *   GUARD_CLOSE     nearest neighbour closer than the bound (fluid)
  *   GUARD_NOT_FINITE position, velocity or density not finite (any kind) */
 #include "device.h"
@@ -14,7 +17,7 @@
 KERNEL void guard_check(GLOBAL const real *position, GLOBAL const real *velocity,
                         GLOBAL const real *density, GLOBAL const real *reference_density,
                         GLOBAL const int *kind, GLOBAL const real *closest, int n, real min_distance,
-                        real max_density_error, GLOBAL real *code)
+                        real max_density_error, int clamped, GLOBAL real *code)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -28,7 +31,7 @@ KERNEL void guard_check(GLOBAL const real *position, GLOBAL const real *velocity
             const real rho0 = reference_density[a];
             if (closest[a] < min_distance)
                 result = GUARD_CLOSE;
-            else if (fabs(density[a] - rho0) > max_density_error * rho0)
+            else if ((clamped ? density[a] - rho0 : fabs(density[a] - rho0)) > max_density_error * rho0)
                 result = GUARD_DENSITY;
         }
         code[a] = (real)result;

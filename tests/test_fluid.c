@@ -9,6 +9,7 @@
 #include "case.h"
 #include "fluid.h"
 #include "grid.h"
+#include "guards.h"
 #include "sim.h"
 #include "testing.h"
 
@@ -446,6 +447,39 @@ static void test_pressure_clamp(void)
     }
 }
 
+/* The density guard: a fluid particle 30% expanded stops the run, unless
+ * negative pressures are clamped (then it has no pressure and pushes
+ * nothing); 30% compressed stops it either way. */
+static void test_density_guard(void)
+{
+    for (int clamp = 0; clamp <= 1; ++clamp)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            amsph_case c;
+            if (testing_load_case("couette_2d.yaml", &c))
+                return;
+            c.fluid.clamp_negative_pressure = clamp;
+            amsph_sim s;
+            amsph_backend *b = start_sim(&c, &s);
+            amsph_host_particles h;
+            CHECK_OK(amsph_particles_download(&s.particles, &h));
+            for (int i = 0; i < h.n; ++i)
+                if (((int *)h.data[AMSPH_FIELD_KIND])[i] == AMSPH_KIND_FLUID) {
+                    amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] *= (amsph_real)(1.0 + 0.3 * sign);
+                    break;
+                }
+            amsph_particles_free(&s.particles);
+            CHECK_OK(amsph_particles_upload(b, &h, &s.particles));
+            amsph_host_free(&h);
+            const int stops = amsph_guards_check(&s) != 0;
+            const int expected = !(clamp && sign < 0);
+            CHECK(stops == expected, "clamp %d, density %+d0%%: the guard %s", clamp, 3 * sign,
+                  stops ? "stopped the run" : "let it go on");
+            if (stops)
+                CHECK(strstr(amsph_last_error(), "guard 'density error'") != NULL, "%s", amsph_last_error());
+            stop_sim(b, &s);
+        }
+}
+
 /* The coarse 2D dam break (dx = 0.0146, 10 particles across the column)
  * pairs two fluid particles under tension closer than 0.3 dx at t = 0.275 s
  * without Monaghan's tensile correction; with it the run reaches its end. */
@@ -660,6 +694,7 @@ int main(void)
     test_dt_floor();
     test_density_diffusion();
     test_guard_stops_run();
+    test_density_guard();
     test_channels();
     test_hydrostatic();
     test_dambreak_volume("dambreak_2d.yaml");

@@ -20,7 +20,8 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in 2D and without 
 # 20%); the grains get the binder's bulk modulus rho0 c0^2, as the buoyancy
 # test of test_grains needs. Negative pressures are clamped: spray torn off
 # the grains went into tension (-21% density, 80 m/s at 21 us at 10 m/s);
-# the tension of the surface is the CSF force's. k_c stops a grain hit at the
+# the tension of the surface is the CSF force's, and the density guard
+# bounds compression only. k_c stops a grain hit at the
 # droplet's speed within half a dx on two contacts, with a damping ratio
 # near 0.5. Written by tools/binder_variants.py.
 dimension: 2
