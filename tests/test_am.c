@@ -12,8 +12,14 @@
  *   - the same for the 2D powder-bed track at 50 W
  *     (cases/am/track_2d_50W.yaml), shortened to 0.3 mm of track (six
  *     grains) on 0.1 mm of substrate at dx = 10 um, with 0.15 ms of cooling
- *     after the 0.15 ms scan.
- * `test_am PART` runs one (spot_weld, track); ctest runs each alone. */
+ *     after the 0.15 ms scan;
+ *   - DED with mobile grains (cases/am/ded_grains_2d.yaml) at dx = 4 um
+ *     (the grains 2 dx in radius) for 12 us: every guard passes, the energy
+ *     ledger closes to 1e-4, the grains that reach the pool melt into it
+ *     (fewer grain particles, more fluid) and the grains' momentum moves
+ *     the melt (the grain particles keep no velocity of their own: each
+ *     grain still in flight moves at its initial 10 m/s to 1%).
+ * `test_am PART` runs one (spot_weld, track, ded); ctest runs each alone. */
 #include <math.h>
 #include <string.h>
 
@@ -108,18 +114,75 @@ static void test_track(void)
     run_hard_case(&c, "2D track, 50 W");
 }
 
+/* Counts of grain and fluid particles, and the speed of the fastest and
+ * slowest grain particle. */
+static void grain_census(const amsph_host_particles *h, int *grain, int *fluid, double *fastest, double *slowest)
+{
+    const int *kind = h->data[AMSPH_FIELD_KIND];
+    const amsph_real *v = amsph_host_real(h, AMSPH_FIELD_VELOCITY);
+    *grain = *fluid = 0;
+    *fastest = 0.0;
+    *slowest = INFINITY;
+    for (int i = 0; i < h->n; ++i) {
+        *fluid += kind[i] == AMSPH_KIND_FLUID;
+        if (kind[i] == AMSPH_KIND_GRAIN) {
+            ++*grain;
+            const double speed = sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1]);
+            *fastest = fmax(*fastest, speed);
+            *slowest = fmin(*slowest, speed);
+        }
+    }
+}
+
+static void test_ded(void)
+{
+    amsph_case c;
+    if (testing_load_case("../am/ded_grains_2d.yaml", &c))
+        return;
+    c.dx = 4.0e-6;
+    c.fluid.barrier_distance = 0.5 * c.dx;
+    c.end_time = 1.2e-5;
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    amsph_host_particles start = {0}, end = {0};
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_particles_download(&s.particles, &start));
+    const int ran = amsph_sim_advance(&s, c.end_time, NULL, NULL) == 0;
+    CHECK(ran, "DED stopped at t = %g s: %s", s.time, amsph_last_error());
+    double ledger = INFINITY;
+    CHECK_OK(amsph_thermal_ledger_error(&s, &ledger));
+    if (ran && amsph_particles_download(&s.particles, &end) == 0) {
+        int grain0, fluid0, grain1, fluid1;
+        double fast0, slow0, fast1, slow1;
+        grain_census(&start, &grain0, &fluid0, &fast0, &slow0);
+        grain_census(&end, &grain1, &fluid1, &fast1, &slow1);
+        printf("DED, dx %g um: %d particles, %lld steps; grain particles %d -> %d, fluid %d -> %d, grain "
+               "speeds %.3g to %.3g m/s at the end, ledger error %.2e\n",
+               c.dx * 1e6, end.n, s.step, grain0, grain1, fluid0, fluid1, slow1, fast1, ledger);
+        CHECK(grain1 < grain0 && fluid1 > fluid0 + (grain0 - grain1) / 2,
+              "the grains did not melt into the pool: grain particles %d -> %d, fluid %d -> %d", grain0, grain1,
+              fluid0, fluid1);
+        CHECK(fabs(fast1 - 10.0) < 0.1, "the fastest grain moves at %g m/s, not its initial 10", fast1);
+        CHECK(ledger < 1e-4, "DED: energy ledger error %g", ledger);
+    }
+    amsph_host_free(&start);
+    amsph_host_free(&end);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
         const char *name;
         void (*run)(void);
-    } parts[] = {{"spot_weld", test_spot_weld}, {"track", test_track}};
+    } parts[] = {{"spot_weld", test_spot_weld}, {"track", test_track}, {"ded", test_ded}};
     int ran = 0;
     for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k)
         if (argc < 2 || strcmp(argv[1], parts[k].name) == 0) {
             parts[k].run();
             ++ran;
         }
-    CHECK(ran > 0, "unknown part '%s' (spot_weld, track)", argv[1]);
+    CHECK(ran > 0, "unknown part '%s' (spot_weld, track, ded)", argv[1]);
     return testing_finish();
 }
