@@ -184,6 +184,11 @@ static herr_t write_contents(hid_t file, const amsph_checkpoint *ck)
         status = write_scalars(file, ck->state.scalar);
     if (status >= 0)
         status = write_run(file, &ck->run);
+    if (status >= 0)
+        status = amsph_h5_write_attribute(file, "grain_values", H5T_NATIVE_INT, &ck->state.grain_values);
+    if (status >= 0 && ck->state.grain_values > 0)
+        status = amsph_h5_write_array(file, "grains", amsph_h5_field_type(AMSPH_TYPE_REAL), ck->state.grain_values,
+                                      ck->state.grains);
     return status;
 }
 
@@ -334,13 +339,29 @@ static int read_run(hid_t group, const char *what, void *target)
     return read_snapshot_list(group, what, &r->snapshots);
 }
 
+/* The grain records (the grains module), after the other groups. */
+static int read_grains(hid_t file, const char *path, amsph_sim_state *st)
+{
+    AMSPH_CHECK(amsph_h5_read_attribute(file, path, "grain_values", H5T_NATIVE_INT, &st->grain_values));
+    if (st->grain_values < 0)
+        return amsph_bad_input("%s: %d grain values", path, st->grain_values);
+    if (st->grain_values == 0)
+        return 0;
+    st->grains = malloc((size_t)st->grain_values * sizeof *st->grains);
+    if (!st->grains)
+        return amsph_fail("out of host memory for %d grain values", st->grain_values);
+    return amsph_h5_read_array(file, path, "grains", amsph_h5_field_type(AMSPH_TYPE_REAL), st->grain_values,
+                               st->grains);
+}
+
 static int read_contents(hid_t file, const char *path, amsph_checkpoint *ck)
 {
     AMSPH_CHECK(read_root(file, path, ck));
     AMSPH_CHECK(read_group(file, path, "particles", read_particles, &ck->state.particles));
     AMSPH_CHECK(read_group(file, path, "last_good", read_particles, &ck->state.last_good));
     AMSPH_CHECK(read_group(file, path, "sim", read_scalars, ck->state.scalar));
-    return read_group(file, path, "run", read_run, &ck->run);
+    AMSPH_CHECK(read_group(file, path, "run", read_run, &ck->run));
+    return read_grains(file, path, &ck->state);
 }
 
 int amsph_checkpoint_read(const char *path, amsph_checkpoint *ck)

@@ -1,15 +1,16 @@
 /* Checkpoints: everything a restart needs to continue a simulation bit for
  * bit (on the same backend and device): every particle field, the last good
- * copy, the sim's scalars (amsph_sim_scalars), and where the run's output
+ * copy, the sim's scalars (amsph_sim_scalars), the grain records, and where the run's output
  * stands.
  *
  * File layout, format version AMSPH_CHECKPOINT_VERSION: an HDF5 file with
- *     root attributes dim, real_bytes, case_hash, case_path
+ *     root attributes dim, real_bytes, case_hash, case_path, grain_values
  *     /particles   one dataset per field (as in snapshots)
  *     /last_good   the output fields of the last state that passed the guards
  *     /sim         one attribute per sim scalar (float64 or int64)
  *     /run         attributes next_output, wall_seconds, series_bytes,
  *                  snapshots; datasets snapshot_time, snapshot_particles
+ *     /grains      the grain records, grain_values reals (only with grains)
  * followed by a 64-byte text trailer (HDF5 ignores bytes past its end)
  *     amsph checkpoint VERSION HDF5_BYTES FNV1A64_OF_THEM_IN_HEX
  * The trailer and checksum are verified before HDF5 reads anything, so a
@@ -23,7 +24,7 @@
 #include "output.h"
 #include "sim.h"
 
-#define AMSPH_CHECKPOINT_VERSION 1
+#define AMSPH_CHECKPOINT_VERSION 2 /* 2: grain records */
 
 /* Where the run's output stands. */
 struct amsph_run_record {

@@ -184,6 +184,24 @@ void amsph_grains_dt(const amsph_sim *s, double *dt, const char **limit)
     }
 }
 
+int amsph_grains_save(amsph_sim *s, amsph_real **records, int *values)
+{
+    *values = s->grains.count * GRAIN_RECORD;
+    *records = malloc((size_t)(*values > 0 ? *values : 1) * sizeof **records);
+    if (!*records)
+        return amsph_fail("out of host memory for %d grain records", s->grains.count);
+    return amsph_grains_download(s, *records);
+}
+
+int amsph_grains_restore(amsph_sim *s, const amsph_real *records, int values)
+{
+    if (values != s->grains.count * GRAIN_RECORD)
+        return amsph_bad_input("the saved state holds %d grain values; this case has %d grains of %d",
+                               values, s->grains.count, GRAIN_RECORD);
+    s->grains.recover_spin = 0;
+    return amsph_upload(s->backend, s->grains.records, 0, (size_t)values * sizeof(amsph_real), records);
+}
+
 int amsph_grains_download(amsph_sim *s, amsph_real *records)
 {
     return amsph_download(s->backend, s->grains.records, 0,

@@ -26,8 +26,12 @@ int amsph_grains_drift(amsph_sim *s, double dt);
 /* The grain particles' forces and the grains' sums (after the fluid forces). */
 int amsph_grains_forces(amsph_sim *s);
 /* The grains' sums from the particles as they are, their angular velocity
- * recovered from the particles' angular momentum (after a restart). */
+ * recovered from the particles' angular momentum. */
 int amsph_grains_recover(amsph_sim *s);
+/* The grain records for a saved state (*values reals, malloc'd into
+ * *records), and back into a restored sim, which continues bit for bit. */
+int amsph_grains_save(amsph_sim *s, amsph_real **records, int *values);
+int amsph_grains_restore(amsph_sim *s, const amsph_real *records, int values);
 /* Grain particles that melted leave, solidifying fluid joins (thermal
  * module, before its own phase change). */
 int amsph_grains_change_phase(amsph_sim *s);

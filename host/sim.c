@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "error.h"
@@ -323,7 +324,7 @@ int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_sta
     amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT];
     memcpy(scalar, st->scalar, sizeof scalar);
     copy_scalars(s, scalar, 1);
-    return c->grains.enabled ? amsph_grains_recover(s) : 0;
+    return c->grains.enabled ? amsph_grains_restore(s, st->grains, st->grain_values) : 0;
 }
 
 int amsph_sim_save(amsph_sim *s, amsph_sim_state *st)
@@ -331,11 +332,14 @@ int amsph_sim_save(amsph_sim *s, amsph_sim_state *st)
     memset(st, 0, sizeof *st);
     copy_scalars(s, st->scalar, 0);
     AMSPH_CHECK(amsph_particles_download(&s->particles, &st->particles));
-    return amsph_particles_download(&s->last_good, &st->last_good);
+    AMSPH_CHECK(amsph_particles_download(&s->last_good, &st->last_good));
+    return s->config.grains.enabled ? amsph_grains_save(s, &st->grains, &st->grain_values) : 0;
 }
 
 void amsph_sim_state_free(amsph_sim_state *st)
 {
+    free(st->grains);
+    st->grains = NULL;
     amsph_host_free(&st->particles);
     amsph_host_free(&st->last_good);
 }

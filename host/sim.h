@@ -161,6 +161,8 @@ typedef struct {
     amsph_host_particles particles; /* every field */
     amsph_host_particles last_good; /* output fields of the last state that passed the guards */
     amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT]; /* in amsph_sim_scalars order */
+    int grain_values;   /* grains x GRAIN_RECORD (the grains module), else 0 */
+    amsph_real *grains; /* the grain records (kernels/grain_params.h) */
 } amsph_sim_state;
 
 /* Kernel support radius / h: 2 (Wendland C2) or 3 (quintic spline). */

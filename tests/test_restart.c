@@ -2,8 +2,11 @@
  * restarted to step 200 ends bit for bit where a run straight to step 200
  * ends, field by field in the final snapshot and in every field and scalar
  * of the checkpoint, with the same series rows, on every backend, restarted
- * in the checkpoint's directory and in another: for the dam break and for a
- * melting slab under a laser (thermal, laser and fluid modules). A bad
+ * in the checkpoint's directory and in another: for the dam break, for a
+ * melting slab under a laser (thermal, laser and fluid modules) and for the
+ * dam break pushing a mobile grain (the grain records are checkpointed; a
+ * restart that recovered them from the particles instead differs in the
+ * last bits). A bad
  * restart file (missing, not a checkpoint, truncated, corrupt, other
  * version, other dimension, other case, other field set, other precision)
  * is refused as bad input with a message saying which. A write that fails
@@ -65,6 +68,12 @@ static const char *melting_slab =
     "  - {shape: box, kind: wall, material: steel, min: [0, -7.5e-5], max: [1.0e-3, 0], temperature: 300}\n"
     "laser: {power: 1000, radius: 1.0e-4, absorption_coefficient: 2000, start: [5.0e-4, 5.0e-4], "
     "off_time: 1.0e-3}\n";
+/* The dam break's wave meets a grain (of water's density) resting on the floor, which it
+ * pushes and turns (the grains module: grain records beside the particles). */
+static const char *grain_dambreak =
+    "dimension: 2\nend_time: 0.4\n" DAMBREAK_HEAD
+    "  - {shape: box, kind: grain, material: water, min: [0.3066, 0], max: [0.365, 0.0438], temperature: 300}\n"
+    "grains: {contact_stiffness: 1.0e4, contact_damping: 1.0}\n";
 static const char *cube_3d =
     "dimension: 3\n"
     "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
@@ -546,6 +555,7 @@ int main(void)
     for (int k = 0; k < TESTING_BACKENDS; ++k) {
         test_bit_identical(k, dambreak, "dambreak");
         test_bit_identical(k, melting_slab, "slab");
+        test_bit_identical(k, grain_dambreak, "grains");
     }
     amsph_backend *b = testing_backend(0);
     amsph_case c;
