@@ -16,7 +16,7 @@
 #define GRAIN_FORCE 10            /* f_k, N (3) */
 #define GRAIN_TORQUE 13           /* m_k about r_k, N m (3) */
 #define GRAIN_INERTIA 16          /* I_k about r_k: xx, yy, zz, xy, xz, yz (6), kg m^2 */
-#define GRAIN_ANGULAR_MOMENTUM 22 /* sum_r m_r (r_r - r_k) x u_r, kg m^2/s (3) */
+#define GRAIN_ANGULAR_MOMENTUM 22 /* L_k = I_k omega_k about r_k, kg m^2/s (3), what the kicks integrate */
 #define GRAIN_PARTICLES 25        /* particles of the grain */
 #define GRAIN_RECORD 26
 

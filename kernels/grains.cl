@@ -40,7 +40,7 @@ static inline void grain_motion(GLOBAL const real *grains, GLOBAL const int *gra
 
 /* x = I^-1 y for the symmetric inertia I (xx, yy, zz, xy, xz, yz), by
  * Cramer's rule; in 2D only the z components take part. */
-static inline void inertia_solve(GLOBAL const real *i6, const real y[3], real x[3])
+static inline void inertia_solve(const real i6[6], const real y[3], real x[3])
 {
 #if AMSPH_DIM == 2
     x[0] = REAL(0.0);
@@ -59,8 +59,14 @@ static inline void inertia_solve(GLOBAL const real *i6, const real y[3], real x[
 #endif
 }
 
+/* Entry (a, b) of the symmetric inertia stored as xx, yy, zz, xy, xz, yz. */
+static inline real inertia_entry(const real i6[6], int a, int b)
+{
+    return a == b ? i6[a] : i6[a + b + 2]; /* xy: 0 + 1 + 2 = 3, xz: 4, yz: 5 */
+}
+
 /* I omega for the symmetric inertia (xx, yy, zz, xy, xz, yz). */
-static inline void inertia_apply(GLOBAL const real *i6, const real w[3], real out[3])
+static inline void inertia_apply(const real i6[6], const real w[3], real out[3])
 {
     out[0] = i6[0] * w[0] + i6[3] * w[1] + i6[4] * w[2];
     out[1] = i6[3] * w[0] + i6[1] * w[1] + i6[5] * w[2];
@@ -68,11 +74,13 @@ static inline void inertia_apply(GLOBAL const real *i6, const real w[3], real ou
 }
 
 /* Half a kick of the balance of linear and angular momentum of each grain
- * (Fuchs et al. 2022 Eqs. 11, 12, the latter in the world frame with the
- * gyroscopic term, which vanishes for a sphere):
- *   u_k     += dt/2 f_k / m_k
- *   omega_k += dt/2 I_k^-1 (m_k - omega_k x I_k omega_k)
- * (gravity is part of f_k, grain_particle_forces). */
+ * (Fuchs et al. 2022 Eqs. 11, 12), the latter for the angular momentum
+ * L = I omega in the world frame, whose rate is the torque alone (the
+ * gyroscopic term omega x I omega of Eq. 12 for omega is then implicit):
+ *   u_k += dt/2 f_k / m_k,   L_k += dt/2 m_k,   omega_k = I_k^-1 L_k
+ * (gravity is part of f_k, grain_particle_forces). A free body keeps its L
+ * to rounding, where integrating omega with the gyroscopic term drifts at
+ * first order in dt (7e-4 over a turn of test_grains' tumbling brick). */
 KERNEL void grain_kick(int ngrains, real half_dt, GLOBAL real *grains)
 {
     FOR_EACH_ITEM(k, ngrains)
@@ -80,17 +88,17 @@ KERNEL void grain_kick(int ngrains, real half_dt, GLOBAL real *grains)
         GLOBAL real *rec = grains + GRAIN_RECORD * k;
         const real m = rec[GRAIN_MASS];
         if (m > REAL(0.0)) {
-            real w[3], iw[3], gyro[3], torque[3], dw[3];
-            grain_vector(grains, k, GRAIN_SPIN, w);
-            inertia_apply(rec + GRAIN_INERTIA, w, iw);
-            cross3(w, iw, gyro);
+            real l[3], w[3], i6[6];
             for (int d = 0; d < 3; ++d) {
                 rec[GRAIN_VELOCITY + d] += half_dt * rec[GRAIN_FORCE + d] / m;
-                torque[d] = rec[GRAIN_TORQUE + d] - gyro[d];
+                rec[GRAIN_ANGULAR_MOMENTUM + d] += half_dt * rec[GRAIN_TORQUE + d];
+                l[d] = rec[GRAIN_ANGULAR_MOMENTUM + d];
             }
-            inertia_solve(rec + GRAIN_INERTIA, torque, dw);
+            for (int e = 0; e < 6; ++e)
+                i6[e] = rec[GRAIN_INERTIA + e];
+            inertia_solve(i6, l, w);
             for (int d = 0; d < 3; ++d)
-                rec[GRAIN_SPIN + d] += half_dt * dw[d];
+                rec[GRAIN_SPIN + d] = w[d];
         }
     }
 }
@@ -161,6 +169,48 @@ KERNEL void grain_drift_centres(int ngrains, real dt, GLOBAL real *grains)
     {
         for (int d = 0; d < AMSPH_DIM; ++d)
             grains[GRAIN_RECORD * k + GRAIN_CENTRE + d] += dt * grains[GRAIN_RECORD * k + GRAIN_VELOCITY + d];
+    }
+}
+
+/* The angular velocity over a drift of dt, at the middle of the turn
+ * (implicit midpoint for the orientation): the grain turned by half of
+ * omega dt has the inertia I' = R I R^T (R the half turn), and omega' =
+ * I'^-1 L. Turning by the omega of the step's start instead gets the
+ * orientation wrong at first order in dt for a grain whose omega wanders
+ * (test_grains' tumbling brick lost 2.5e-3 of its energy in a turn). In 2D
+ * omega and L lie along z, whose moment a turn about z keeps: omega stays. */
+KERNEL void grain_midpoint_spin(int ngrains, real dt, GLOBAL real *grains)
+{
+    FOR_EACH_ITEM(k, ngrains)
+    {
+        GLOBAL real *rec = grains + GRAIN_RECORD * k;
+        if (rec[GRAIN_MASS] > REAL(0.0)) {
+            real half_turn[3], l[3], w[3], rot[3][3], i6[6], turned[6];
+            grain_vector(grains, k, GRAIN_SPIN, half_turn);
+            grain_vector(grains, k, GRAIN_ANGULAR_MOMENTUM, l);
+            for (int d = 0; d < 3; ++d)
+                half_turn[d] *= REAL(0.5) * dt;
+            for (int c = 0; c < 3; ++c) { /* column c of R: the turned unit vector */
+                real e[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, col[3];
+                e[c] = REAL(1.0);
+                rotate(half_turn, e, col);
+                for (int d = 0; d < 3; ++d)
+                    rot[d][c] = col[d];
+            }
+            for (int e = 0; e < 6; ++e)
+                i6[e] = rec[GRAIN_INERTIA + e];
+            const int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+            for (int e = 0; e < 6; ++e) { /* (R I R^T)_ij = sum_ab R_ia I_ab R_jb */
+                real sum = REAL(0.0);
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b)
+                        sum += rot[row[e]][a] * inertia_entry(i6, a, b) * rot[col[e]][b];
+                turned[e] = sum;
+            }
+            inertia_solve(turned, l, w);
+            for (int d = 0; d < 3; ++d)
+                rec[GRAIN_SPIN + d] = w[d];
+        }
     }
 }
 
@@ -276,9 +326,9 @@ KERNEL void grain_chunk_scatter(GLOBAL const int *kind, GLOBAL const int *grain,
  * with r_rk = r_r - r_k. The particles move rigidly, u_r = u_k' + omega_k x
  * (r_r - r_k'), so the last is u_k' + omega_k x (r_k - r_k'): Eq. 37 after
  * the grain lost or gained particles, and u_k itself otherwise. With
- * recover_spin (at the start, or after a restart) omega_k solves the
- * angular momentum of the particles, sum r_rk x m_r u_r = I omega_k with I
- * of the points alone, which is exact for a rigid rotation. */
+ * recover_spin (at the start) omega_k solves the angular momentum of the
+ * particles, sum r_rk x m_r u_r = I omega_k with I of the points alone,
+ * which is exact for a rigid rotation. */
 KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nchunks, int ngrains,
                        GLOBAL const real *position, GLOBAL const real *velocity, GLOBAL const real *mass,
                        GLOBAL const real *acceleration, grain_params p, int recover_spin, GLOBAL real *grains)
@@ -305,15 +355,18 @@ KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nc
                 force[d] += mass[r] * acceleration[3 * r + d];
             }
         }
+        real spin[3], angular_momentum[3];
+        grain_vector(grains, k, GRAIN_SPIN, spin);
+        grain_vector(grains, k, GRAIN_ANGULAR_MOMENTUM, angular_momentum);
+        const real particles_before = rec[GRAIN_PARTICLES];
         for (int f = 0; f < GRAIN_RECORD; ++f)
-            if (f < GRAIN_SPIN || f >= GRAIN_SPIN + 3)
-                rec[f] = REAL(0.0);
+            rec[f] = REAL(0.0);
         if (m > REAL(0.0)) {
             real centre[3];
             for (int d = 0; d < 3; ++d)
                 centre[d] = centre_before[d] + moment[d] / m;
-            real i6[6] = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0)};
-            real torque[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, spin_momentum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            real i6[6];
+            real torque[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, orbital[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real point_i6[6] = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0), REAL(0.0)};
             for (int j = begin; j < end; ++j) {
                 const int r = order[j];
@@ -334,35 +387,34 @@ KERNEL void grain_sums(GLOBAL const int *order, GLOBAL const int *offset, int nc
                 cross3(arm, mu, l);
                 for (int d = 0; d < 3; ++d) {
                     torque[d] += t[d];
-                    spin_momentum[d] += l[d];
+                    orbital[d] += l[d];
                 }
             }
             for (int e = 0; e < 6; ++e)
                 i6[e] = point_i6[e] + (e < 3 ? p.particle_inertia_factor * m : REAL(0.0));
+            /* the angular velocity: from the particles' orbital angular
+             * momentum (recover_spin); unchanged where the grain lost or
+             * gained particles (Eq. 37), its L following the new inertia;
+             * else from the L the kicks integrate, through the inertia of the
+             * turned grain */
+            if (recover_spin)
+                inertia_solve(point_i6, orbital, spin);
+            if (recover_spin || (real)(end - begin) != particles_before)
+                inertia_apply(i6, spin, angular_momentum);
+            else
+                inertia_solve(i6, angular_momentum, spin);
             rec[GRAIN_MASS] = m;
             for (int d = 0; d < 3; ++d) {
                 rec[GRAIN_CENTRE + d] = centre[d];
                 rec[GRAIN_VELOCITY + d] = velocity_before[d] + momentum[d] / m;
+                rec[GRAIN_SPIN + d] = spin[d];
                 rec[GRAIN_FORCE + d] = force[d];
                 rec[GRAIN_TORQUE + d] = torque[d];
-                rec[GRAIN_ANGULAR_MOMENTUM + d] = spin_momentum[d];
+                rec[GRAIN_ANGULAR_MOMENTUM + d] = angular_momentum[d];
             }
             for (int e = 0; e < 6; ++e)
                 rec[GRAIN_INERTIA + e] = i6[e];
             rec[GRAIN_PARTICLES] = (real)(end - begin);
-            if (recover_spin) {
-                real w[3];
-                for (int e = 0; e < 6; ++e)
-                    rec[GRAIN_INERTIA + e] = point_i6[e];
-                inertia_solve(rec + GRAIN_INERTIA, spin_momentum, w);
-                for (int e = 0; e < 6; ++e)
-                    rec[GRAIN_INERTIA + e] = i6[e];
-                for (int d = 0; d < 3; ++d)
-                    rec[GRAIN_SPIN + d] = w[d];
-            }
-        } else {
-            for (int d = 0; d < 3; ++d)
-                rec[GRAIN_SPIN + d] = REAL(0.0);
         }
     }
 }
