@@ -20,6 +20,8 @@
  *   buoyancy a square of density 500 and one of 2000 held in water at
  *           hydrostatic rest feel the net force (rho_water - rho) V g, V
  *           their particles' volume, within 5%, and start to rise and sink.
+ *   float   a grain of density 700 started half in water sinks and comes to
+ *           rest where it displaces its weight (centre at 0.185 m, 0.1 dx).
  *   melt    a spinning grain of a melting material flies beside a hot drop
  *           of its own melt (no gravity, no walls): it melts in part, and
  *           across the transfer of particles to the fluid the mass of
@@ -27,7 +29,7 @@
  *           their energy (enthalpy and kinetic) to 1e-5, and the grain's
  *           kinetic energy equals that of the particles it keeps (1e-5), as
  *           Eq. 37 requires.
- * `test_grains PART` runs one part; ctest runs each alone. */
+ * `test_grains PART` runs one part (all without one); ctest runs each alone. */
 #include <math.h>
 #include <string.h>
 
@@ -541,6 +543,48 @@ static void test_tumble(void)
                   spin[1][d], spin[0][d]);
 }
 
+/* ---- float -------------------------------------------------------------- */
+
+/* A square grain (0.1 m sides, density 700) in a tank 0.4 m wide, started
+ * with its lower half in 0.2 m of water at rest (the water fills the tank
+ * around it, `fill`), sinks and settles where it displaces its weight:
+ * draft 0.07 m, and with the water's volume kept the level rises to
+ * H = (0.4 * 0.2 - 0.1 * 0.05 + 0.1 * 0.07) / 0.4 = 0.205 m, so the centre
+ * comes to rest at 0.205 - 0.07 + 0.05 = 0.185 m (from 0.2), within 0.1 dx. */
+static void test_float(void)
+{
+    static const char text[] =
+        "dimension: 2\n"
+        "domain: {min: [-0.05, -0.05], max: [0.45, 0.4]}\n"
+        "dx: 0.01\nkernel: quintic\nend_time: 2.5\noutput_interval: 0.5\n"
+        "gravity: [0, -9.81]\n"
+        "fluid: {density_diffusion: fourtakas, viscosity: artificial, artificial_alpha: 0.1}\n"
+        "grains: {contact_stiffness: 1e4}\n"
+        "materials:\n"
+        "  - {name: water, density: 1000, sound_speed: 20}\n"
+        "  - {name: wood, density: 700, sound_speed: 23.905}\n"
+        "geometry:\n"
+        "  - {shape: box, kind: wall, material: water, min: [0, 0], max: [0.4, 0.35], layers: 3, open: [+y]}\n"
+        "  - {shape: box, kind: grain, material: wood, min: [0.15, 0.15], max: [0.25, 0.25], hydrostatic: true}\n"
+        "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.4, 0.2], hydrostatic: true, fill: true}\n";
+    amsph_case c;
+    amsph_backend *b = testing_backend(0);
+    if (!b || parse(text, "float.yaml", &c))
+        return;
+    amsph_sim s;
+    CHECK_OK(amsph_sim_create(&c, b, &s));
+    CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
+    amsph_real rec[GRAIN_RECORD];
+    grain_record(&s, 0, rec);
+    printf("float: a grain of density 700 settles with its centre at %.5f m (displacing its weight: 0.185), "
+           "moving at %.2g m/s, after %lld steps\n",
+           rec[GRAIN_CENTRE + 1], rec[GRAIN_VELOCITY + 1], s.step);
+    CHECK(fabs(rec[GRAIN_CENTRE + 1] - 0.185) < 0.1 * c.dx, "the floating grain rests at %g m, not 0.185",
+          rec[GRAIN_CENTRE + 1]);
+    amsph_sim_free(&s);
+    amsph_backend_destroy(b);
+}
+
 int main(int argc, char **argv)
 {
     const char *part = argc > 1 ? argv[1] : "all";
@@ -552,6 +596,8 @@ int main(int argc, char **argv)
         test_tumble();
     if (!strcmp(part, "buoyancy") || !strcmp(part, "all"))
         test_buoyancy();
+    if (!strcmp(part, "float") || !strcmp(part, "all"))
+        test_float();
     if (!strcmp(part, "melt") || !strcmp(part, "all"))
         test_melt();
     return testing_finish();
