@@ -55,6 +55,26 @@ static void grain_record(amsph_sim *s, int k, amsph_real rec[GRAIN_RECORD])
     memcpy(rec, all + GRAIN_RECORD * k, GRAIN_RECORD * sizeof(amsph_real));
 }
 
+/* Sets the grain particles of s moving at drift + omega x r (about the
+ * origin, where the tests put their grains' centres) and has the grains
+ * take their velocities and spins from them; start gets the particles (the
+ * caller frees it). */
+static void spin_up(amsph_sim *s, const double omega[3], const double drift[3], amsph_host_particles *start)
+{
+    CHECK_OK(amsph_particles_download(&s->particles, start));
+    const int *kind = start->data[AMSPH_FIELD_KIND];
+    const amsph_real *x = amsph_host_real(start, AMSPH_FIELD_POSITION);
+    amsph_real *u = amsph_host_real(start, AMSPH_FIELD_VELOCITY);
+    for (int i = 0; i < start->n; ++i)
+        if (kind[i] == AMSPH_KIND_GRAIN)
+            for (int d = 0; d < 3; ++d)
+                u[3 * i + d] = (amsph_real)(drift[d] + omega[(d + 1) % 3] * x[3 * i + (d + 2) % 3] -
+                                            omega[(d + 2) % 3] * x[3 * i + (d + 1) % 3]);
+    CHECK_OK(amsph_upload(s->backend, s->particles.field[AMSPH_FIELD_VELOCITY], 0,
+                          (size_t)start->n * 3 * sizeof(amsph_real), u));
+    CHECK_OK(amsph_grains_recover(s));
+}
+
 /* ---- bounce ------------------------------------------------------------- */
 
 #define BOUNCE_DX 0.01
@@ -216,16 +236,9 @@ static void test_spin(void)
     amsph_sim s;
     amsph_host_particles start = {0}, end = {0};
     CHECK_OK(amsph_sim_create(&c, b, &s));
-    CHECK_OK(amsph_particles_download(&s.particles, &start));
-    /* set it spinning about its centre (0, 0) */
-    amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION), *u = amsph_host_real(&start, AMSPH_FIELD_VELOCITY);
-    for (int i = 0; i < start.n; ++i) {
-        u[3 * i + 0] = (amsph_real)(0.1 - SPIN_OMEGA * x[3 * i + 1]);
-        u[3 * i + 1] = (amsph_real)(0.05 + SPIN_OMEGA * x[3 * i + 0]);
-    }
-    CHECK_OK(amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0,
-                          (size_t)start.n * 3 * sizeof(amsph_real), u));
-    CHECK_OK(amsph_grains_recover(&s));
+    static const double omega[3] = {0.0, 0.0, SPIN_OMEGA}, drift[3] = {0.1, 0.05, 0.0};
+    spin_up(&s, omega, drift, &start);
+    const amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION);
     amsph_real rec[GRAIN_RECORD];
     grain_record(&s, 0, rec);
     CHECK(fabs(rec[GRAIN_SPIN + 2] - SPIN_OMEGA) < 1e-5 * SPIN_OMEGA, "recovered spin %g rad/s, set %g",
@@ -413,17 +426,8 @@ static void test_melt(void)
     amsph_sim s;
     amsph_host_particles start = {0};
     CHECK_OK(amsph_sim_create(&c, b, &s));
-    CHECK_OK(amsph_particles_download(&s.particles, &start));
-    const int *kind = start.data[AMSPH_FIELD_KIND];
-    amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION), *u = amsph_host_real(&start, AMSPH_FIELD_VELOCITY);
-    for (int i = 0; i < start.n; ++i)
-        if (kind[i] == AMSPH_KIND_GRAIN) {
-            u[3 * i + 0] = (amsph_real)(0.1 - SPIN_OMEGA * x[3 * i + 1]);
-            u[3 * i + 1] = (amsph_real)(SPIN_OMEGA * x[3 * i + 0]);
-        }
-    CHECK_OK(amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0,
-                          (size_t)start.n * 3 * sizeof(amsph_real), u));
-    CHECK_OK(amsph_grains_recover(&s));
+    static const double omega[3] = {0.0, 0.0, SPIN_OMEGA}, drift[3] = {0.1, 0.0, 0.0};
+    spin_up(&s, omega, drift, &start);
     melt_ledger l = {0};
     check_melt_ledger(&l, &s);
     CHECK_OK(amsph_sim_advance(&s, c.end_time, check_melt_ledger, &l));
@@ -482,15 +486,9 @@ static void run_tumble(int backend, double final_spin[3])
     amsph_sim s;
     amsph_host_particles start = {0}, end = {0};
     CHECK_OK(amsph_sim_create(&c, b, &s));
-    CHECK_OK(amsph_particles_download(&s.particles, &start));
-    amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION), *u = amsph_host_real(&start, AMSPH_FIELD_VELOCITY);
-    for (int i = 0; i < start.n; ++i) /* u = omega x r about the centre (0, 0, 0) */
-        for (int d = 0; d < 3; ++d)
-            u[3 * i + d] = (amsph_real)(omega[(d + 1) % 3] * x[3 * i + (d + 2) % 3] -
-                                        omega[(d + 2) % 3] * x[3 * i + (d + 1) % 3]);
-    CHECK_OK(amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0,
-                          (size_t)start.n * 3 * sizeof(amsph_real), u));
-    CHECK_OK(amsph_grains_recover(&s));
+    static const double drift[3] = {0.0, 0.0, 0.0};
+    spin_up(&s, omega, drift, &start);
+    const amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION);
     amsph_real rec0[GRAIN_RECORD], rec1[GRAIN_RECORD];
     grain_record(&s, 0, rec0);
     double l0[3], e0, l1[3], e1;
