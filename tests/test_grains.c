@@ -45,6 +45,27 @@ static int parse(const char *text, const char *name, amsph_case *c)
     return status;
 }
 
+/* Parses the case text and creates its sim on backend k; NULL (a failed
+ * check, or a missing backend) where that fails. */
+static amsph_backend *start_case(const char *text, const char *name, int k, amsph_case *c, amsph_sim *s)
+{
+    amsph_backend *b = testing_backend(k);
+    if (!b)
+        return NULL;
+    if (parse(text, name, c) || amsph_sim_create(c, b, s)) {
+        CHECK(0, "%s: %s", name, amsph_last_error());
+        amsph_backend_destroy(b);
+        return NULL;
+    }
+    return b;
+}
+
+static void stop_case(amsph_backend *b, amsph_sim *s)
+{
+    amsph_sim_free(s);
+    amsph_backend_destroy(b);
+}
+
 static void grain_record(amsph_sim *s, int k, amsph_real rec[GRAIN_RECORD])
 {
     amsph_real all[4 * GRAIN_RECORD];
@@ -171,8 +192,7 @@ static bounce_result run_bounce(int backend, double damping, double end)
     const double bottom = rec[GRAIN_CENTRE + 1] - 0.5 * (BOUNCE_ROWS - 1) * BOUNCE_DX;
     r.overlap = BOUNCE_DX - (bottom + 0.5 * BOUNCE_DX);
     r.tilt = rec[GRAIN_SPIN + 2];
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
     return r;
 }
 
@@ -230,12 +250,11 @@ static void test_spin(void)
         "geometry:\n"
         "  - {shape: box, kind: grain, material: m, min: [-0.04, -0.03], max: [0.04, 0.03], velocity: [0.1, 0.05]}\n";
     amsph_case c;
-    amsph_backend *b = testing_backend(0);
-    if (!b || parse(text, "spin.yaml", &c))
-        return;
     amsph_sim s;
+    amsph_backend *b = start_case(text, "spin.yaml", 0, &c, &s);
+    if (!b)
+        return;
     amsph_host_particles start = {0}, end = {0};
-    CHECK_OK(amsph_sim_create(&c, b, &s));
     static const double omega[3] = {0.0, 0.0, SPIN_OMEGA}, drift[3] = {0.1, 0.05, 0.0};
     spin_up(&s, omega, drift, &start);
     const amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION);
@@ -263,8 +282,7 @@ static void test_spin(void)
     CHECK(worst < 1e-3 * c.dx, "a particle strayed %g dx from the rigid motion", worst / c.dx);
     amsph_host_free(&start);
     amsph_host_free(&end);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
 }
 
 /* ---- buoyancy ----------------------------------------------------------- */
@@ -302,11 +320,10 @@ static const char buoyancy_text[] =
 static void test_buoyancy(void)
 {
     amsph_case c;
-    amsph_backend *b = testing_backend(0);
-    if (!b || parse(buoyancy_text, "buoyancy.yaml", &c))
-        return;
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_case(buoyancy_text, "buoyancy.yaml", 0, &c, &s);
+    if (!b)
+        return;
     static const double density[2] = {500.0, 2000.0};
     const double volume = 0.01;
     for (int k = 0; k < 2; ++k) {
@@ -327,8 +344,7 @@ static void test_buoyancy(void)
            light[GRAIN_VELOCITY + 1], heavy[GRAIN_VELOCITY + 1]);
     CHECK(light[GRAIN_VELOCITY + 1] > 0.0, "the light grain does not rise: %g m/s", light[GRAIN_VELOCITY + 1]);
     CHECK(heavy[GRAIN_VELOCITY + 1] < 0.0, "the heavy grain does not sink: %g m/s", heavy[GRAIN_VELOCITY + 1]);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
 }
 
 /* ---- melt --------------------------------------------------------------- */
@@ -420,12 +436,11 @@ static int check_melt_ledger(void *context, const amsph_sim *cs)
 static void test_melt(void)
 {
     amsph_case c;
-    amsph_backend *b = testing_backend(0);
-    if (!b || parse(melt_text, "melt.yaml", &c))
-        return;
     amsph_sim s;
+    amsph_backend *b = start_case(melt_text, "melt.yaml", 0, &c, &s);
+    if (!b)
+        return;
     amsph_host_particles start = {0};
-    CHECK_OK(amsph_sim_create(&c, b, &s));
     static const double omega[3] = {0.0, 0.0, SPIN_OMEGA}, drift[3] = {0.1, 0.0, 0.0};
     spin_up(&s, omega, drift, &start);
     melt_ledger l = {0};
@@ -442,8 +457,7 @@ static void test_melt(void)
     CHECK(l.worst_energy < 1e-5, "grain kinetic energy error %g", l.worst_energy);
     CHECK(l.worst_total < 1e-5, "total energy (enthalpy and kinetic) error %g", l.worst_total);
     amsph_host_free(&start);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
 }
 
 /* ---- tumble ------------------------------------------------------------- */
@@ -480,12 +494,11 @@ static void run_tumble(int backend, double final_spin[3])
         "  - {shape: box, kind: grain, material: m, min: [-0.03, -0.02, -0.01], max: [0.03, 0.02, 0.01]}\n";
     static const double omega[3] = {0.5, 1.0, 1.5}; /* rad/s */
     amsph_case c;
-    amsph_backend *b = testing_backend(backend);
-    if (!b || parse(text, "tumble.yaml", &c))
-        return;
     amsph_sim s;
+    amsph_backend *b = start_case(text, "tumble.yaml", backend, &c, &s);
+    if (!b)
+        return;
     amsph_host_particles start = {0}, end = {0};
-    CHECK_OK(amsph_sim_create(&c, b, &s));
     static const double drift[3] = {0.0, 0.0, 0.0};
     spin_up(&s, omega, drift, &start);
     const amsph_real *x = amsph_host_real(&start, AMSPH_FIELD_POSITION);
@@ -526,8 +539,7 @@ static void run_tumble(int backend, double final_spin[3])
         final_spin[d] = rec1[GRAIN_SPIN + d];
     amsph_host_free(&start);
     amsph_host_free(&end);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
 }
 
 static void test_tumble(void)
@@ -566,11 +578,10 @@ static void test_float(void)
         "  - {shape: box, kind: grain, material: wood, min: [0.15, 0.15], max: [0.25, 0.25], hydrostatic: true}\n"
         "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.4, 0.2], hydrostatic: true, fill: true}\n";
     amsph_case c;
-    amsph_backend *b = testing_backend(0);
-    if (!b || parse(text, "float.yaml", &c))
-        return;
     amsph_sim s;
-    CHECK_OK(amsph_sim_create(&c, b, &s));
+    amsph_backend *b = start_case(text, "float.yaml", 0, &c, &s);
+    if (!b)
+        return;
     CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
     amsph_real rec[GRAIN_RECORD];
     grain_record(&s, 0, rec);
@@ -579,8 +590,7 @@ static void test_float(void)
            rec[GRAIN_CENTRE + 1], rec[GRAIN_VELOCITY + 1], s.step);
     CHECK(fabs(rec[GRAIN_CENTRE + 1] - 0.185) < 0.1 * c.dx, "the floating grain rests at %g m, not 0.185",
           rec[GRAIN_CENTRE + 1]);
-    amsph_sim_free(&s);
-    amsph_backend_destroy(b);
+    stop_case(b, &s);
 }
 
 int main(int argc, char **argv)
