@@ -69,6 +69,7 @@ static void stop_case(amsph_backend *b, amsph_sim *s)
 static void grain_record(amsph_sim *s, int k, amsph_real rec[GRAIN_RECORD])
 {
     amsph_real all[4 * GRAIN_RECORD];
+    memset(rec, 0, GRAIN_RECORD * sizeof(amsph_real));
     if (s->grains.count > 4 || amsph_grains_download(s, all)) {
         CHECK(0, "%d grains: %s", s->grains.count, amsph_last_error());
         return;
