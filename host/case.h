@@ -197,6 +197,7 @@ typedef struct {
     double h_over_dx;     /* smoothing length of the surface terms / dx, default: support 3.6 dx */
     double normal_cutoff; /* a normal counts where |n| h >= this, default 0.1 */
     double min_shepard;   /* particles with a Shepard sum below this carry no surface force */
+    double interface_viscosity; /* alpha0 of Fuchs et al. 2022 Eq. 32; 0: off */
 } amsph_surface_settings;
 
 /* Mobile powder grains (rigid bodies of particles, host/grains.h); on when

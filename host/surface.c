@@ -22,6 +22,7 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     p->normal_cutoff = (amsph_real)st->normal_cutoff;
     p->max_curvature = (amsph_real)(0.5 / h_st);
     p->min_shepard = (amsph_real)st->min_shepard;
+    p->interface_viscosity = (amsph_real)st->interface_viscosity;
     /* cells are s->support / GRID_CELLS_PER_SUPPORT wide; the surface support needs this many */
     p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support * GRID_CELLS_PER_SUPPORT - 1e-9);
     p->tension = st->tension;
@@ -100,7 +101,8 @@ int amsph_surface_forces(amsph_sim *s)
                              amsph_arg_buffer(s->materials), cells, amsph_arg_int(n), grid,
                              cell_start, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
     return AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
-                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), temperature(s),
+                        field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
+                        field(s, AMSPH_FIELD_MASS), temperature(s),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                         field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_NORMAL),
                         field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,

@@ -400,6 +400,36 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
     return (v_a * v_a + v_b * v_b) * rho_a / (rho_a + rho_b) * f / v_a;
 }
 
+/* Interface viscosity (Fuchs et al. 2022 Sec. 3.3.5, Eqs. 31-32): an
+ * artificial viscosity (Monaghan 1992) on the liquid at its free surface,
+ * of factor alpha_a = alpha0 h |n_a| (Eq. 32, delta_a = |n_a|), so that it
+ * acts where the colour gradient is and fades into the bulk:
+ *   a_a += alpha_a sum_b m_b h c_ab (u_ab . r_ab) / (rho_ab (r_ab^2 + eps h^2)) grad_a W_ab
+ * over the fluid b, c_ab and rho_ab the pair's mean sound speed and
+ * density, eps = INTERFACE_VISCOSITY_EPSILON; it damps the spurious flows of
+ * the CSF force along the surface. Unlike Monaghan's, Eq. 31 acts on
+ * receding pairs too; its sign here is the dissipative one (a closing pair
+ * repels). Returned as the factor of m_b r_ab, f the kernel's
+ * grad_a W_ab = f r_ab. */
+#define INTERFACE_VISCOSITY_EPSILON REAL(0.01)
+
+static inline real interface_viscosity_factor(real alpha_a, real h, real c_mean, real rho_mean, real u_dot_r,
+                                              real r2, real f)
+{
+    return alpha_a * h * c_mean * u_dot_r / (rho_mean * (r2 + INTERFACE_VISCOSITY_EPSILON * h * h)) * f;
+}
+
+/* alpha_a of the interface viscosity (Fuchs et al. 2022 Eq. 32) on a liquid
+ * particle a (fluid, not gas): alpha0 h |n_a|; 0 elsewhere and when off. */
+static inline real interface_viscosity_alpha(GLOBAL const int *kind, GLOBAL const int *material,
+                                             GLOBAL const real *materials, GLOBAL const real *normal,
+                                             const surface_params *p, int a)
+{
+    return p->interface_viscosity > REAL(0.0) && kind[a] == KIND_FLUID && colour_material(materials, material, a)
+               ? p->interface_viscosity * p->h * normal_size(normal, a)
+               : REAL(0.0);
+}
+
 /* On fluid particles, with the curvature smoothed over the particles with a
  * normal (Russell 2018 Eq. 3.30),
  *   kappa~_a = (1/Gamma*_a) sum_b psi_b V_b kappa_b W_ab,
@@ -416,8 +446,10 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
  * adds nothing to these sums). Every particle gets its smoothed
  * curvature and sigma(T) (outputs; the capillary time step reads sigma).
  * A liquid with a contact angle smooths over liquid b only (shapes_curvature);
- * its n_a is the turned normal of surface_normal. */
-KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *density,
+ * its n_a is the turned normal of surface_normal. With
+ * p.interface_viscosity, the interface viscosity (interface_viscosity_factor)
+ * joins the acceleration. */
+KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *velocity, GLOBAL const real *density,
                           GLOBAL const real *mass, GLOBAL const real *temperature,
                           GLOBAL const int *kind, GLOBAL const int *material,
                           GLOBAL const real *shepard, GLOBAL const real *normal,
@@ -436,6 +468,8 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
         real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 19 (with a gas) */
+        real damping[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 31 */
+        const real alpha_a = interface_viscosity_alpha(kind, material, materials, normal, &p, a);
         const real support2 = surface_support2(&p), support = sqrt(support2);
         real x_a[3];
         grid_point(position, a, x_a);
@@ -445,6 +479,19 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
             if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                 continue;
             const real r = sqrt(r2);
+            if (alpha_a > REAL(0.0) && kind[b] == KIND_FLUID && b != a) {
+                real u_ab[3];
+                for (int d = 0; d < 3; ++d)
+                    u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
+                const real c_mean = REAL(0.5) * (material_value(materials, material[a], MATERIAL_SOUND_SPEED) +
+                                                 material_value(materials, material[b], MATERIAL_SOUND_SPEED));
+                const real v = mass[b] * interface_viscosity_factor(alpha_a, p.h, c_mean,
+                                                                    REAL(0.5) * (density[a] + density[b]),
+                                                                    dot3(u_ab, r_ab), r2,
+                                                                    smoothing_grad_factor(r, p.h));
+                for (int d = 0; d < 3; ++d)
+                    damping[d] += v * r_ab[d];
+            }
             if (!colour_material(materials, material, b)) {
                 const real c = interface_colour_factor(mass[a], density[a], mass[b], density[b],
                                                        smoothing_grad_factor(r, p.h));
@@ -487,6 +534,9 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *densit
             }
             for (int d = 0; d < 3; ++d)
                 acceleration[3 * a + d] += force[d] / density[a];
+            if (alpha_a > REAL(0.0))
+                for (int d = 0; d < 3; ++d)
+                    acceleration[3 * a + d] += damping[d];
         }
     }
 }

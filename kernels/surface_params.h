@@ -13,6 +13,7 @@ typedef struct {
     AMSPH_SHARED_REAL normal_cutoff; /* a normal counts where |n| h >= this (Russell Eq. 3.27, erratum 5) */
     AMSPH_SHARED_REAL max_curvature; /* |kappa| <= 1 / (2 h) (Russell Sec. 3.1.2, flaw 4), 1/m */
     AMSPH_SHARED_REAL min_shepard;   /* particles with Gamma below this carry no surface force */
+    AMSPH_SHARED_REAL interface_viscosity; /* alpha0 of Fuchs et al. 2022 Eq. 32; 0: off */
     int reach;                       /* cells the surface support spans from a particle's cell */
     int tension;                     /* 1: the normal (curvature) force */
     int marangoni;                   /* 1: the tangential force d sigma/dT grad_s T |n| */

@@ -313,6 +313,8 @@ static const bad_case bad_cases[] = {
      NAME ":17: 'surface.h_over_dx' (1.1) must be at least 'h_over_dx' (1.2)"},
     {"surface normal cut-off above 1", SURFACE_MAT("") "fluid: {}\nsurface: {normal_cutoff: 2}\n",
      NAME ":17: 'surface.normal_cutoff' must be in (0, 1], got 2"},
+    {"surface interface viscosity negative", SURFACE_MAT("") "fluid: {}\nsurface: {interface_viscosity: -1}\n",
+     NAME ":17: 'surface.interface_viscosity' must be >= 0, got -1"},
     {"sigma slope without temperatures", SURFACE_MAT(", surface_tension_slope: -1e-3") "fluid: {}\nsurface: {}\n",
      NAME ":9: material 'water': a temperature-dependent surface tension needs temperatures: give "
           "every geometry block a 'temperature'"},

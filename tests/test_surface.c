@@ -12,11 +12,14 @@
  *   - wetting (Fuchs et al. 2022 Eqs. 27-29): at the contact line the normals
  *     take the prescribed angle, and a patch on a wall with theta0 = 90
  *     degrees keeps its 90-degree contact angle where a completely wetting
- *     one spreads;
+ *     one spreads, and a half disc with theta0 = 60 or 120 degrees comes to
+ *     rest at that angle (with the interface viscosity, Fuchs Eqs. 31-32,
+ *     which leaves rigid motion alone and damps a strain at the surface);
  *   - both backends give the same surface forces. */
 #include <math.h>
 
 #include "sim.h"
+#include "surface.h"
 #include "testing.h"
 #include "testing_run.h"
 
@@ -452,6 +455,129 @@ static void test_sessile_droplet(void)
     }
 }
 
+/* The half disc of sessile_cap_2d.yaml (radius 0.85 m on a free-slip wall,
+ * a 90-degree contact angle as built) relaxes to a cap at the contact angle
+ * theta0 = 60 and 120 degrees and comes to rest there: after 20 s its
+ * contact angle is within 5 degrees of theta0 (issue 10, item 5; measured
+ * 58.7 and 116.3) and no particle moves faster than 2% of the capillary
+ * speed sigma / mu (0.25 m/s; measured 0.8% and 0.4%). */
+static void test_sessile_cap(void)
+{
+    static const double angles[] = {60.0, 120.0};
+    for (size_t k = 0; k < sizeof angles / sizeof angles[0]; ++k) {
+        amsph_case c;
+        amsph_host_particles h = {0};
+        if (testing_load_case("sessile_cap_2d.yaml", &c))
+            return;
+        c.materials[0].contact_angle = angles[k];
+        if (!testing_run_case(&c, 0, c.end_time, &h)) {
+            const double angle = sessile_angle(&h, c.dx);
+            const amsph_real *u = amsph_host_real(&h, AMSPH_FIELD_VELOCITY);
+            const int *kind = (const int *)h.data[AMSPH_FIELD_KIND];
+            double fastest = 0.0;
+            for (int i = 0; i < h.n; ++i)
+                if (kind[i] == AMSPH_KIND_FLUID)
+                    fastest = fmax(fastest, hypot(u[3 * i], u[3 * i + 1]));
+            const double capillary_speed = c.materials[0].surface_tension / c.materials[0].viscosity;
+            printf("sessile cap: theta0 %g, contact angle %.2f degrees, fastest %.2e m/s at %g s\n", angles[k],
+                   angle, fastest, c.end_time);
+            CHECK(fabs(angle - angles[k]) < 5.0, "theta0 %g: contact angle %g degrees at %g s", angles[k], angle,
+                  c.end_time);
+            CHECK(fastest < 0.02 * capillary_speed, "theta0 %g: not at rest, a particle at %g m/s", angles[k],
+                  fastest);
+        }
+        amsph_host_free(&h);
+    }
+}
+
+/* The surface force's acceleration on the disc of young_laplace_2d.yaml
+ * (R = 1 m, at rest as built) moving with u = (u0 - w y + e x, v0 + w x - e y)
+ * (a translation, a rigid rotation w and a plane strain e), with the
+ * interface viscosity alpha0 (Fuchs et al. 2022 Eqs. 31-32) or without
+ * it (alpha0 = 0): the state is the same, so the difference of the two is
+ * the interface viscosity's. accel[3 n], x[3 n], the velocities u[3 n] and
+ * the normals' sizes size[n] of the n particles are written. */
+static int interface_viscosity_acceleration(double alpha0, double w, double e, double *accel, double *x,
+                                            double *u, double *size, int *n)
+{
+    amsph_case c;
+    if (testing_load_case("young_laplace_2d.yaml", &c))
+        return 1;
+    c.surface.interface_viscosity = alpha0;
+    amsph_backend *b = testing_backend(0);
+    amsph_sim s;
+    amsph_host_particles h = {0};
+    int status = !b || amsph_sim_create(&c, b, &s);
+    if (b && !status) {
+        status = download(&s, &h);
+        amsph_real *xh = amsph_host_real(&h, AMSPH_FIELD_POSITION), *uh = amsph_host_real(&h, AMSPH_FIELD_VELOCITY);
+        amsph_real *ah = amsph_host_real(&h, AMSPH_FIELD_ACCELERATION);
+        for (int i = 0; i < h.n && !status; ++i) {
+            uh[3 * i + 0] = (amsph_real)(0.1 - w * xh[3 * i + 1] + e * xh[3 * i + 0]);
+            uh[3 * i + 1] = (amsph_real)(0.05 + w * xh[3 * i + 0] - e * xh[3 * i + 1]);
+            ah[3 * i + 0] = ah[3 * i + 1] = ah[3 * i + 2] = 0;
+        }
+        const size_t bytes = (size_t)h.n * 3 * sizeof(amsph_real);
+        status = status || amsph_upload(b, s.particles.field[AMSPH_FIELD_VELOCITY], 0, bytes, uh) ||
+                 amsph_upload(b, s.particles.field[AMSPH_FIELD_ACCELERATION], 0, bytes, ah) ||
+                 amsph_surface_forces(&s) || download(&s, &h);
+        CHECK(status == 0, "%s", amsph_last_error());
+        for (int i = 0; i < h.n && !status; ++i) {
+            const amsph_real *nh = amsph_host_real(&h, AMSPH_FIELD_NORMAL) + 3 * i;
+            size[i] = sqrt((double)nh[0] * nh[0] + (double)nh[1] * nh[1]);
+            for (int d = 0; d < 3; ++d) {
+                accel[3 * i + d] = amsph_host_real(&h, AMSPH_FIELD_ACCELERATION)[3 * i + d];
+                x[3 * i + d] = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d];
+                u[3 * i + d] = amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i + d];
+            }
+        }
+        *n = h.n;
+        amsph_host_free(&h);
+        amsph_sim_free(&s);
+    }
+    amsph_backend_destroy(b);
+    return status;
+}
+
+/* The interface viscosity (Fuchs et al. 2022 Eqs. 31-32, alpha0 = 7.2 as
+ * their Table 1) is a viscosity of the interface: it leaves a rigid motion
+ * (translation and rotation: u_ab . r_ab = 0) alone, it dissipates a
+ * strain (sum m u . a < 0: the power of a viscous force), and it acts
+ * within a support of the surface only (alpha = alpha0 h |n|, and |n|
+ * vanishes in the bulk), while the strain rate is the same everywhere. */
+static void test_interface_viscosity(void)
+{
+    enum { MAX_PARTICLES = 2000 };
+    static double a0[3 * MAX_PARTICLES], a1[3 * MAX_PARTICLES], x[3 * MAX_PARTICLES], u[3 * MAX_PARTICLES],
+        size[MAX_PARTICLES];
+    const double strain = 0.1, spin = 0.3, radius = 1.0, support = 3.6 * 0.05;
+    int n = 0;
+    double rigid = 0.0, surface = 0.0, bulk = 0.0, power = 0.0;
+    if (interface_viscosity_acceleration(0.0, spin, 0.0, a0, x, u, size, &n) ||
+        interface_viscosity_acceleration(7.2, spin, 0.0, a1, x, u, size, &n))
+        return;
+    for (int i = 0; i < 3 * n; ++i)
+        rigid = fmax(rigid, fabs(a1[i] - a0[i]));
+    if (interface_viscosity_acceleration(0.0, spin, strain, a0, x, u, size, &n) ||
+        interface_viscosity_acceleration(7.2, spin, strain, a1, x, u, size, &n))
+        return;
+    for (int i = 0; i < n; ++i) {
+        const double da[2] = {a1[3 * i] - a0[3 * i], a1[3 * i + 1] - a0[3 * i + 1]};
+        const double r = hypot(x[3 * i], x[3 * i + 1]), magnitude = hypot(da[0], da[1]);
+        power += u[3 * i] * da[0] + u[3 * i + 1] * da[1]; /* equal masses */
+        if (r < radius - support - 0.05)
+            bulk = fmax(bulk, magnitude);
+        else
+            surface = fmax(surface, magnitude);
+    }
+    printf("interface viscosity: rigid motion %g, strain: surface %g, bulk %g m/s^2, power %g\n", rigid, surface,
+           bulk, power);
+    CHECK(surface > 0.0 && rigid < 1e-4 * surface, "rigid motion: %g m/s^2 (strain at the surface: %g)", rigid,
+          surface);
+    CHECK(bulk < 1e-3 * surface, "strain: %g m/s^2 in the bulk, %g at the surface", bulk, surface);
+    CHECK(power < 0.0, "strain: power %g, not dissipated", power);
+}
+
 /* Both backends: the same normals, curvatures and accelerations after the
  * first 0.05 s of a droplet (float: within 1e-4 of the largest). */
 static void check_backends_agree(const char *file)
@@ -488,9 +614,12 @@ int main(void)
     check_backends_agree("young_laplace_2d.yaml");
     check_backends_agree("young_laplace_3d.yaml");
     check_backends_agree("sessile_droplet_2d.yaml");
+    check_backends_agree("sessile_cap_2d.yaml");
     test_contact_line_normal(60.0);
     test_contact_line_normal(120.0);
+    test_interface_viscosity();
     test_sessile_droplet();
+    test_sessile_cap();
     test_marangoni_return_flow();
     test_young_laplace();
     test_square_droplet();
