@@ -57,7 +57,13 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
  * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
  * rho0_w and c0 are the wall's own (its material at its temperature), so
- * that its volume m_w / rho_w stays dx^d next to fluids of any rho0.
+ * that its volume m_w / rho_w stays dx^d next to fluids of any rho0. In the
+ * multiphase form rho_w = rho0_w: there a wall's density serves only as its
+ * volume (the pair pressure takes the fluid's density for it), which keeps
+ * the lattice volume; the inverse equation of state would make a wall under
+ * 0.5 m of water 1.2% smaller than the fluid's particles beside it (whose
+ * hydrostatic mass rho dx^d gives them the lattice volume) and push them off
+ * the bottom at 0.2 g.
  * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
  * pressure would glue separating fluid to it and draw particles into it.
  * In the multiphase form (a gas fills the space, nothing separates from a
@@ -116,7 +122,8 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             const real p_w = adami_wall_pressure(sum_w[0], sum_p[0], sum_rho_r[0], &p, floor_w, p_gas);
             pressure[a] = p_w;
             gas_wall_pressure[a] = sum_w[1] > REAL(0.0) ? p_gas : p_w;
-            density[a] = p.pressure_gradient == PRESSURE_MULTIPHASE ? rho0 : rho0 + (p_w - p.background_pressure) / (c0 * c0);
+            density[a] = p.pressure_gradient == PRESSURE_MULTIPHASE ? rho0
+                                                                    : rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
                 wall_velocity[3 * a + d] =
                     all_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - sum_u[d] / all_w
