@@ -69,6 +69,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     s->reference_density_varies = reference_density_varies(&s->config);
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
+    AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_GAS_WALL_PRESSURE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
     /* liquid until the thermal module says otherwise (it sets the field) */
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LIQUID_FRACTION));
@@ -124,12 +125,12 @@ int amsph_fluid_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), grid,
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
-                             params, field(s, AMSPH_FIELD_DENSITY),
-                             field(s, AMSPH_FIELD_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
+                             params, field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                             field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
                         field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
-                        field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
+                        field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
                         field(s, AMSPH_FIELD_LIQUID_FRACTION), field(s, AMSPH_FIELD_KIND),
                         field(s, AMSPH_FIELD_MATERIAL),
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,

@@ -145,8 +145,8 @@ int amsph_grains_forces(amsph_sim *s)
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_particle_forces", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
-                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE), field(s, AMSPH_FIELD_MASS),
-                             field(s, AMSPH_FIELD_SHEPARD), field(s, AMSPH_FIELD_LIQUID_FRACTION),
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                             field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD), field(s, AMSPH_FIELD_LIQUID_FRACTION),
                              field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_GRAIN),
                              amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),

@@ -41,6 +41,15 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
     }
 }
 
+/* The Adami, Hu & Adams (2012, Eq. 27) wall pressure from the sums over
+ * the fluid around a wall particle (a_w = 0: walls move at constant
+ * velocity), no lower than floor_w; fallback where no fluid is near. */
+static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rho_r[3], const fluid_params *p,
+                                       real floor_w, real fallback)
+{
+    return sum_w > REAL(0.0) ? fmax(floor_w, (sum_p + dot3(p->gravity, sum_rho_r)) / sum_w) : fallback;
+}
+
 /* Wall and fixed-solid particles take their state from the fluid around them
  * (Adami, Hu & Adams 2012, Eqs. 22, 27, 28):
  *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
@@ -48,17 +57,31 @@ KERNEL void equation_of_state(GLOBAL const int *kind, GLOBAL const int *material
  *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
  * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
  * rho0_w and c0 are the wall's own (its material at its temperature), so
- * that its volume m_w / rho_w stays dx^d next to fluids of any rho0.
+ * that its volume m_w / rho_w stays dx^d next to fluids of any rho0. In the
+ * multiphase form rho_w = rho0_w: there a wall's density serves only as its
+ * volume (the pair pressure takes the fluid's density for it), which keeps
+ * the lattice volume; the inverse equation of state would make a wall under
+ * 0.5 m of water 1.2% smaller than the fluid's particles beside it (whose
+ * hydrostatic mass rho dx^d gives them the lattice volume) and push them off
+ * the bottom at 0.2 g.
  * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
  * pressure would glue separating fluid to it and draw particles into it.
  * In the multiphase form (a gas fills the space, nothing separates from a
  * wall) p_w is only kept >= 0: the top of a gas column at rest sits at
- * p_b less its weight, and a wall held at p_b would push it down. */
+ * p_b less its weight, and a wall held at p_b would push it down.
+ * Each phase sees the wall's pressure extrapolated from its own particles:
+ * `pressure` (and rho_w) sums over the liquid and other non-gas fluid,
+ * `gas_wall_pressure` over the gas, each over the other phase where none of
+ * its own is near. One sum over both would show the gas beside a
+ * liquid-gas interface the liquid's pressure, rho_l g dx above its own: at
+ * a density ratio of 100 that pushes the gas along the wall at 100 times
+ * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        GLOBAL const real *reference_density, int n, grid_geometry g,
                        GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                       GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *wall_velocity)
+                       GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *gas_wall_pressure,
+                       GLOBAL real *wall_velocity)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -68,9 +91,11 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             real x_a[3];
             grid_point(position, a, x_a);
             const real support = SUPPORT_OVER_H * p.h;
-            real sum_w = REAL(0.0), sum_p = REAL(0.0);
-            real sum_rho_r[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            /* [0]: the non-gas fluid, [1]: the gas */
+            real sum_w[2] = {REAL(0.0), REAL(0.0)}, sum_p[2] = {REAL(0.0), REAL(0.0)};
+            real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
             real sum_u[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            real all_w = REAL(0.0);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 if (kind[b] == KIND_FLUID) {
@@ -80,10 +105,12 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                     if (r2 >= support * support)
                         continue; /* W = 0 */
                     const real w = smoothing_w(sqrt(r2), p.h);
-                    sum_w += w;
-                    sum_p += pressure[b] * w;
+                    const int phase = material_is_gas(materials, material[b]);
+                    sum_w[phase] += w;
+                    sum_p[phase] += pressure[b] * w;
+                    all_w += w;
                     for (int d = 0; d < 3; ++d) {
-                        sum_rho_r[d] += density[b] * r_ab[d] * w;
+                        sum_rho_r[phase][d] += density[b] * r_ab[d] * w;
                         sum_u[d] += velocity[3 * b + d] * w;
                     }
                 }
@@ -91,14 +118,15 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             const real rho0 = reference_density[a];
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
             const real floor_w = p.pressure_gradient == PRESSURE_MULTIPHASE ? REAL(0.0) : p.background_pressure;
-            real p_w = p.background_pressure;
-            if (sum_w > REAL(0.0))
-                p_w = fmax(floor_w, (sum_p + dot3(p.gravity, sum_rho_r)) / sum_w);
+            const real p_gas = adami_wall_pressure(sum_w[1], sum_p[1], sum_rho_r[1], &p, floor_w, p.background_pressure);
+            const real p_w = adami_wall_pressure(sum_w[0], sum_p[0], sum_rho_r[0], &p, floor_w, p_gas);
             pressure[a] = p_w;
-            density[a] = rho0 + (p_w - p.background_pressure) / (c0 * c0);
+            gas_wall_pressure[a] = sum_w[1] > REAL(0.0) ? p_gas : p_w;
+            density[a] = p.pressure_gradient == PRESSURE_MULTIPHASE ? rho0
+                                                                    : rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
                 wall_velocity[3 * a + d] =
-                    sum_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - sum_u[d] / sum_w
+                    all_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - sum_u[d] / all_w
                                       : velocity[3 * a + d];
         }
     }
@@ -202,7 +230,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
  * kernels/fluid_pair.h. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
-                         GLOBAL const real *pressure, GLOBAL const real *mass,
+                         GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
                          GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
@@ -224,7 +252,8 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             {
                 real r_ab[3], r2;
                 if (b != a && grid_pair_within(&run, position, b, support * support, r_ab, &r2))
-                    fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure, mass,
+                    fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
+                                            gas_wall_pressure, mass,
                                             gamma, liquid_fraction, kind, material, materials, &p, acc);
             }
             for (int d = 0; d < 3; ++d)

@@ -122,6 +122,7 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
 typedef struct {
     real m, rho, p, mu, c, gamma;
     real u[3];
+    int gas; /* of a gas material: walls show it their gas_wall_pressure */
 } fluid_pair_side;
 
 static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *velocity, GLOBAL const real *mass,
@@ -137,6 +138,7 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
     s.mu = particle_viscosity(materials, material[a], liquid_fraction[a]);
     s.c = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
     s.gamma = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
+    s.gas = material_is_gas(materials, material[a]);
     for (int d = 0; d < 3; ++d)
         s.u[d] = velocity[3 * a + d];
     return s;
@@ -154,11 +156,14 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
  *                 (Fuchs et al. 2022 Eq. 23)
  * plus, if set, the tensile correction (above) and the barrier force. The
  * viscosity follows the liquid fraction through the mushy zone
- * (materials.h). Walls, solids and grains enter with their Adami state;
- * viscosity sees their ghost velocity (no-slip) or nothing (free-slip). */
+ * (materials.h). Walls, solids and grains enter with their Adami state
+ * (a gas particle with the pressure extrapolated from the gas,
+ * gas_wall_pressure; kernels/fluid.cl wall_state); viscosity sees their
+ * ghost velocity (no-slip) or nothing (free-slip). */
 static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, const real r_ab[3], real r2,
                                            GLOBAL const real *velocity, GLOBAL const real *wall_velocity,
                                            GLOBAL const real *density, GLOBAL const real *pressure,
+                                           GLOBAL const real *gas_wall_pressure,
                                            GLOBAL const real *mass, GLOBAL const real *gamma,
                                            GLOBAL const real *liquid_fraction, GLOBAL const int *kind,
                                            GLOBAL const int *material, GLOBAL const real *materials,
@@ -169,13 +174,14 @@ static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, co
     const int mat_b = material[b];
     const real rho_b = density[b], m_b = mass[b];
     const real gamma_b = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[b] : REAL(1.0);
+    const real pressure_b = fluid_b || !s_a->gas ? pressure[b] : gas_wall_pressure[b];
     const pair_weight w = pair_weight_of(p->pressure_gradient, s_a->m, m_b, s_a->rho, rho_b);
     real pressure_term = -w.num / w.den *
-                         pair_pressure_sum(p->pressure_gradient, s_a->p, pressure[b], s_a->rho,
-                                           fluid_b ? rho_b : s_a->rho, s_a->gamma, gamma_b) *
+                         pair_pressure_sum(p->pressure_gradient, s_a->p, pressure_b, s_a->rho, fluid_b ? rho_b : s_a->rho,
+                                           s_a->gamma, gamma_b) *
                          f;
     if (fluid_b && p->tensile_correction > REAL(0.0))
-        pressure_term += tensile_correction(s_a->p, pressure[b], s_a->rho, rho_b, m_b, sqrt(r2), f, p);
+        pressure_term += tensile_correction(s_a->p, pressure_b, s_a->rho, rho_b, m_b, sqrt(r2), f, p);
     real u_visc[3];
     for (int d = 0; d < 3; ++d)
         u_visc[d] = s_a->u[d] - (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);

@@ -239,9 +239,10 @@ static inline void contact_force(const real r_rb[3], real r, const real u_rb[3],
  * The grain sums f_k = sum_r m_r a_r (Fuchs Eq. 38). */
 KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                                   GLOBAL const real *wall_velocity, GLOBAL const real *density,
-                                  GLOBAL const real *pressure, GLOBAL const real *mass,
-                                  GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
-                                  GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *grain,
+                                  GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure,
+                                  GLOBAL const real *mass, GLOBAL const real *gamma,
+                                  GLOBAL const real *liquid_fraction, GLOBAL const int *kind,
+                                  GLOBAL const int *material, GLOBAL const int *grain,
                                   GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                                   GLOBAL const real *materials, fluid_params fp, grain_params p,
                                   GLOBAL real *acceleration)
@@ -268,7 +269,7 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
                         real r_br[3] = {-r_rb[0], -r_rb[1], -r_rb[2]};
                         real a_br[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
                         fluid_pair_acceleration(&s_b, r, r_br, r2, velocity, wall_velocity, density, pressure,
-                                                mass, gamma, liquid_fraction, kind, material, materials, &fp, a_br);
+                                                gas_wall_pressure, mass, gamma, liquid_fraction, kind, material, materials, &fp, a_br);
                         for (int d = 0; d < 3; ++d)
                             f[d] -= mass[b] * a_br[d];
                     }

@@ -6,11 +6,15 @@
  *   - a gas fill around a circle leaves out the occupied lattice points;
  *   - a liquid droplet in a gas at density ratio 100 holds sigma/R above the
  *     gas's pressure and comes to rest (Young-Laplace);
- *   - a liquid layer under a gas layer (ratio 100) stays at rest with the
- *     hydrostatic pressure;
- *   - both backends give the same forces on a gas case.
- * "test_gas droplet" and "test_gas column" run one part each; no argument runs the short ones.
- * The column does not reach rest yet (largest speed 0.01 m/s at 1.5 s; BENCHMARKS.md): not in ctest. */
+ *   - a liquid layer under a gas layer (ratio 100) in a closed tank comes to
+ *     rest with the hydrostatic pressure;
+ *   - heat flows from a liquid into a gas as between two semi-infinite media
+ *     of their own k, rho and c_p;
+ *   - a laser passes through a gas: the liquid under it absorbs what it
+ *     absorbs alone;
+ *   - both backends give the same forces on a gas case (and the conduction
+ *     and laser parts run on both).
+ * "test_gas droplet" and "test_gas column" run one part each; no argument runs the short ones. */
 #include <math.h>
 
 #include "sim.h"
@@ -185,6 +189,114 @@ static void test_column(void)
     amsph_host_free(&h);
 }
 
+/* Conduction from a liquid into a gas (conduction_gas_1d.yaml): at every
+ * output, on both backends, every particle within 1% of the 1 K step of the
+ * two-layer solution, whose contact temperature T_c = e_l / (e_l + e_g)
+ * (effusivities e = sqrt(k rho c_p)) and the gas's profile erfc(d / (2
+ * sqrt(alpha_g t))) hold only with the gas's own k and c_p. */
+static double two_layer_temperature(const amsph_case *c, int material, double x, double t)
+{
+    const amsph_material *liquid = &c->materials[0], *gas = &c->materials[1];
+    const double e_l = sqrt(liquid->conductivity.v[0] * liquid->density.v[0] * liquid->specific_heat.v[0]);
+    const double e_g = sqrt(gas->conductivity.v[0] * gas->density.v[0] * gas->specific_heat.v[0]);
+    const double contact = e_l / (e_l + e_g);
+    const double lo = c->geometry[1].min[0], hi = c->geometry[1].max[0], period = c->domain_max[0] - c->domain_min[0];
+    if (material == 1) {
+        const double d = fmin(x - lo, hi - x), alpha = gas->conductivity.v[0] / (gas->density.v[0] * gas->specific_heat.v[0]);
+        return contact * erfc(d / (2.0 * sqrt(alpha * t)));
+    }
+    const double d = fmin(x - hi, lo + period - x);
+    const double alpha = liquid->conductivity.v[0] / (liquid->density.v[0] * liquid->specific_heat.v[0]);
+    return contact + (1.0 - contact) * erf(d / (2.0 * sqrt(alpha * t)));
+}
+
+static void test_conduction(void)
+{
+    amsph_case c;
+    if (testing_load_case("conduction_gas_1d.yaml", &c))
+        return;
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        if (!b)
+            continue;
+        amsph_sim s;
+        double worst = 0.0;
+        int status = amsph_sim_create(&c, b, &s);
+        for (int step = 1; !status && step * c.output_interval <= c.end_time * (1 + 1e-9); ++step) {
+            amsph_host_particles h = {0};
+            status = amsph_sim_advance(&s, step * c.output_interval, NULL, NULL);
+            if (!status)
+                status = amsph_particles_download(&s.particles, &h);
+            const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION), *T = amsph_host_real(&h, AMSPH_FIELD_TEMPERATURE);
+            const int *mat = h.data[AMSPH_FIELD_MATERIAL];
+            for (int i = 0; !status && i < h.n; ++i)
+                worst = fmax(worst, fabs(T[i] - two_layer_temperature(&c, mat[i], x[3 * i], s.time)));
+            amsph_host_free(&h);
+        }
+        CHECK_OK(status);
+        printf("liquid into gas, %s: largest temperature error %.2e K of the 1 K step\n", k ? "opencl" : "openmp",
+               worst);
+        CHECK(worst < 0.01, "conduction into the gas: error %.3g K (goal < 1%% of the 1 K step)", worst);
+        amsph_sim_free(&s);
+        amsph_backend_destroy(b);
+    }
+}
+
+/* The laser through a gas: a liquid slab under 4 rows of gas absorbs what it
+ * absorbs alone, zeta P' (1 - exp(-alpha L)) (P' = P sqrt(2/pi) / r_l, the
+ * 2D slice's power) within 0.1% on both backends, and the gas nothing. */
+static const char *laser_case = "dimension: 2\n"
+                                "domain: {min: [-1.0e-4, -1.0e-4], max: [1.1e-3, 8.0e-4]}\n"
+                                "dx: 5.0e-5\n"
+                                "end_time: 1.0e-3\n"
+                                "output_interval: 1.0e-4\n"
+                                "fluid: {pressure_gradient: multiphase, background_pressure: 1000}\n"
+                                "materials:\n"
+                                "  - {name: melt, density: 8000, sound_speed: 10}\n"
+                                "  - {name: gas, phase: gas, density: 80, sound_speed: 100}\n"
+                                "geometry:\n"
+                                "  - {shape: box, kind: fluid, material: melt, min: [0, 0], max: [1.0e-3, 5.0e-4]}\n"
+                                "%s"
+                                "laser: {power: 100, radius: 1.0e-4, absorption: volumetric, absorptivity: 0.6,\n"
+                                "        absorption_coefficient: 2000, start: [4.75e-4, 7.0e-4], off_time: 1.0e-3}\n";
+
+static void test_laser_through_gas(void)
+{
+    static const char *gas_block =
+        "  - {shape: box, kind: fluid, material: gas, min: [0, 5.0e-4], max: [1.0e-3, 7.0e-4]}\n";
+    const double expected = 0.6 * 100.0 * sqrt(2.0 / 3.14159265358979323846) / 1.0e-4 * (1.0 - exp(-2000.0 * 5.0e-4));
+    for (int with_gas = 0; with_gas < 2; ++with_gas) {
+        char text[2048];
+        snprintf(text, sizeof text, laser_case, with_gas ? gas_block : "");
+        amsph_case c;
+        if (parse(text, &c))
+            return;
+        for (int k = 0; k < TESTING_BACKENDS; ++k) {
+            amsph_backend *b = testing_backend(k);
+            if (!b)
+                continue;
+            amsph_sim s;
+            amsph_host_particles h = {0};
+            CHECK_OK(amsph_sim_create(&c, b, &s));
+            CHECK_OK(amsph_particles_download(&s.particles, &h));
+            double in_gas = 0.0;
+            for (int i = 0; i < h.n; ++i)
+                if (((int *)h.data[AMSPH_FIELD_MATERIAL])[i] == 1)
+                    in_gas = fmax(in_gas, fabs(amsph_host_real(&h, AMSPH_FIELD_LASER_POWER)[i]));
+            printf("laser %s gas, %s: absorbed %.6g W/m (expected %.6g), largest in the gas %g W/m^3\n",
+                   with_gas ? "through" : "without", k ? "opencl" : "openmp", s.laser.absorbed_power, expected,
+                   in_gas);
+            CHECK(fabs(s.laser.absorbed_power / expected - 1.0) < 1e-3,
+                  "laser %s gas: absorbed %g W/m, expected %g W/m", with_gas ? "through" : "without",
+                  s.laser.absorbed_power, expected);
+            CHECK(in_gas == 0.0, "the gas absorbs up to %g W/m^3", in_gas);
+            amsph_host_free(&h);
+            amsph_sim_free(&s);
+            amsph_backend_destroy(b);
+        }
+    }
+}
+
 /* Both backends: the same pressures, normals, curvatures and accelerations
  * of the droplet in gas at the start (float: within 1e-4 of the largest;
  * the acceleration sums pair terms of the background pressure, of size
@@ -225,6 +337,8 @@ int main(int argc, char **argv)
         test_barrier();
         test_fill();
         test_backends_agree();
+        test_conduction();
+        test_laser_through_gas();
     } else if (strcmp(part, "droplet") == 0) {
         test_droplet();
     } else if (strcmp(part, "column") == 0) {
