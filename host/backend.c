@@ -81,10 +81,13 @@ amsph_arg amsph_arg_buffer(amsph_buffer *buffer)
     return a;
 }
 
+/* A value larger than AMSPH_ARG_MAX_BYTES (host/sim.h rules that out at
+ * compile time for the parameter structs) becomes a 0-byte argument, which
+ * the launch refuses as the wrong size. */
 amsph_arg amsph_arg_bytes(const void *v, size_t size)
 {
-    amsph_arg a = {.buffer = NULL, .size = size};
-    memcpy(a.value.bytes, v, size);
+    amsph_arg a = {.buffer = NULL, .size = size <= AMSPH_ARG_MAX_BYTES ? size : 0};
+    memcpy(a.value.bytes, v, a.size);
     return a;
 }
 

@@ -13,6 +13,11 @@
 typedef struct amsph_backend amsph_backend;
 typedef struct amsph_buffer amsph_buffer;
 
+/* The largest value argument (a module's parameter struct; host/sim.h
+ * checks each at compile time: in a double build fluid_params outgrew an
+ * earlier 128 and the copy ran past the end). */
+#define AMSPH_ARG_MAX_BYTES 256
+
 /* A kernel argument: a buffer, or a value (scalar or plain struct) copied in. */
 typedef struct {
     amsph_buffer *buffer; /* NULL for a value */
@@ -20,7 +25,7 @@ typedef struct {
     union {
         double d;
         long long l;
-        unsigned char bytes[128];
+        unsigned char bytes[AMSPH_ARG_MAX_BYTES];
     } value;
 } amsph_arg;
 

@@ -56,6 +56,14 @@ typedef struct {
 #include "laser_params.h"
 #include "grain_params.h"
 
+/* Every parameter struct passed by value fits a kernel argument. */
+_Static_assert(sizeof(fluid_params) <= AMSPH_ARG_MAX_BYTES, "fluid_params too large for amsph_arg");
+_Static_assert(sizeof(thermal_params) <= AMSPH_ARG_MAX_BYTES, "thermal_params too large for amsph_arg");
+_Static_assert(sizeof(surface_params) <= AMSPH_ARG_MAX_BYTES, "surface_params too large for amsph_arg");
+_Static_assert(sizeof(laser_params) <= AMSPH_ARG_MAX_BYTES, "laser_params too large for amsph_arg");
+_Static_assert(sizeof(grain_params) <= AMSPH_ARG_MAX_BYTES, "grain_params too large for amsph_arg");
+_Static_assert(sizeof(grid_geometry) <= AMSPH_ARG_MAX_BYTES, "grid_geometry too large for amsph_arg");
+
 /* The grains module's state (host/grains.h). */
 typedef struct {
     int count;              /* grains (indices 0 .. count - 1 in the `grain` field) */
