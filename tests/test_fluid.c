@@ -243,8 +243,13 @@ static void test_density_diffusion(void)
     CHECK(decay < 0.0, "delta-SPH grows the perturbation (sum rate * sin = %g)", decay);
     /* rho ~ 2000 is stored to eps = 6e-5 in float; the discrete Laplacian
      * amplifies a density error eps by ~4d/h^2, so the rates may differ by
-     * delta h c0 * 8 eps / h^2 = 0.02 of the expected scale (1e-10 in double) */
-    CHECK(worst_mixed < (AMSPH_DOUBLE ? 1e-10 : 0.02) * expected_scale,
+     * delta h c0 * 8 eps / h^2 = 0.02 of the expected scale. In double that
+     * goes, and what is left is physics: the volumes V_b = m_b / rho_b with
+     * m_b = rho0 dx^2 differ between the columns by the perturbation's
+     * relative size A / rho0 = 1e-3 (measured 8.5e-4 of the scale), so 2e-3;
+     * diffusing rho instead of rho - rho0 across the graded rho0 gives rates
+     * of the order of the scale itself. */
+    CHECK(worst_mixed < (AMSPH_DOUBLE ? 2e-3 : 0.02) * expected_scale,
           "Russell form depends on the reference densities: rates differ by %g (scale %g)",
           worst_mixed, expected_scale);
     /* the SPH Laplacian of a resolved sine (40 particles a wavelength) is within 5% */
