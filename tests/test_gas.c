@@ -314,13 +314,8 @@ static void test_backends_agree(void)
     for (int k = 0; k < TESTING_BACKENDS; ++k)
         have += !testing_run_case(&c, k, 0.0, &h[k]);
     for (size_t f = 0; f < sizeof fields / sizeof fields[0] && have == TESTING_BACKENDS; ++f) {
-        const int comps = amsph_fields[fields[f]].components;
-        const amsph_real *a = amsph_host_real(&h[0], fields[f]), *o = amsph_host_real(&h[1], fields[f]);
-        double largest = 0.0, diff = 0.0;
-        for (int i = 0; i < comps * h[0].n; ++i) {
-            largest = fmax(largest, fabs(a[i]));
-            diff = fmax(diff, fabs(a[i] - o[i]));
-        }
+        double largest, diff;
+        testing_field_difference(&h[0], &h[1], fields[f], &largest, &diff);
         const double scale = fields[f] == AMSPH_FIELD_ACCELERATION ? 1e-6 * c.fluid.background_pressure / (10.0 * c.dx)
                                                                    : 1e-4 * largest;
         CHECK(diff <= scale, "%s: backends differ by %g (largest %g, allowed %g)", amsph_fields[fields[f]].name, diff,

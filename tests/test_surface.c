@@ -592,13 +592,8 @@ static void check_backends_agree(const char *file)
     for (int k = 0; k < TESTING_BACKENDS; ++k)
         have += !testing_run_case(&c, k, 0.05, &h[k]);
     for (size_t f = 0; f < sizeof fields / sizeof fields[0] && have == TESTING_BACKENDS; ++f) {
-        const int comps = amsph_fields[fields[f]].components;
-        const amsph_real *a = amsph_host_real(&h[0], fields[f]), *o = amsph_host_real(&h[1], fields[f]);
-        double largest = 0.0, diff = 0.0;
-        for (int i = 0; i < comps * h[0].n; ++i) {
-            largest = fmax(largest, fabs(a[i]));
-            diff = fmax(diff, fabs(a[i] - o[i]));
-        }
+        double largest, diff;
+        testing_field_difference(&h[0], &h[1], fields[f], &largest, &diff);
         CHECK(diff <= 1e-4 * largest, "%s: backends differ by %g (largest %g) in %s", amsph_fields[fields[f]].name,
               diff, largest, file);
     }

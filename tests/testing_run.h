@@ -2,6 +2,8 @@
 #ifndef AMSPH_TESTING_RUN_H
 #define AMSPH_TESTING_RUN_H
 
+#include <math.h>
+
 #include "sim.h"
 #include "testing.h"
 
@@ -25,6 +27,21 @@ static inline int testing_run_case(const amsph_case *c, int k, double until, ams
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
     return status;
+}
+
+/* The largest magnitude of field f over set a, and the largest difference
+ * between a and b (the same particles in the same order: two backends' runs
+ * of one case), over every component. */
+static inline void testing_field_difference(const amsph_host_particles *a, const amsph_host_particles *b,
+                                            amsph_field_id f, double *largest, double *diff)
+{
+    const int comps = amsph_fields[f].components;
+    const amsph_real *x = amsph_host_real(a, f), *y = amsph_host_real(b, f);
+    *largest = *diff = 0.0;
+    for (int i = 0; i < comps * a->n; ++i) {
+        *largest = fmax(*largest, fabs(x[i]));
+        *diff = fmax(*diff, fabs(x[i] - y[i]));
+    }
 }
 
 #endif
