@@ -108,8 +108,10 @@ int amsph_grains_kick(amsph_sim *s, double half_dt)
 int amsph_grains_drift(amsph_sim *s, double dt)
 {
     const int n = s->particles.n, count = s->grains.count;
-    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_midpoint_spin", count, amsph_arg_int(count), amsph_arg_real(dt),
-                             amsph_arg_buffer(s->grains.records)));
+    /* in 2D omega lies along z and the half turn keeps it (kernels/grains.cl) */
+    if (s->config.dim == 3)
+        AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_midpoint_spin", count, amsph_arg_int(count), amsph_arg_real(dt),
+                                 amsph_arg_buffer(s->grains.records)));
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_drift", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_GRAIN),
                              amsph_arg_int(n), amsph_arg_buffer(s->grains.records), amsph_arg_real(dt),
                              field(s, AMSPH_FIELD_POSITION)));

@@ -178,7 +178,8 @@ KERNEL void grain_drift_centres(int ngrains, real dt, GLOBAL real *grains)
  * I'^-1 L. Turning by the omega of the step's start instead gets the
  * orientation wrong at first order in dt for a grain whose omega wanders
  * (test_grains' tumbling brick lost 2.5e-3 of its energy in a turn). In 2D
- * omega and L lie along z, whose moment a turn about z keeps: omega stays. */
+ * omega and L lie along z, whose moment a turn about z keeps: omega stays,
+ * and the host does not launch it. */
 KERNEL void grain_midpoint_spin(int ngrains, real dt, GLOBAL real *grains)
 {
     FOR_EACH_ITEM(k, ngrains)
