@@ -123,9 +123,10 @@ int amsph_fluid_forces(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "wall_state", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
-                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), grid,
-                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
-                             params, field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), field(s, AMSPH_FIELD_SHEPARD),
+                             amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
+                             amsph_arg_buffer(s->materials), params, field(s, AMSPH_FIELD_DENSITY),
+                             field(s, AMSPH_FIELD_PRESSURE),
                              field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),

@@ -33,8 +33,8 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
         } else {
             geo->ncell[d] = cells < 1.0 ? 1 : (int)ceil(cells);
         }
-        if ((double)geo->total_cells * geo->ncell[d] > 2.0e9)
-            return amsph_fail("the grid would need more than 2e9 cells; shrink the domain");
+        if ((double)GRID_SETS * geo->total_cells * geo->ncell[d] > 2.0e9)
+            return amsph_fail("the grid would need more than 1e9 cells; shrink the domain");
         geo->total_cells *= geo->ncell[d];
     }
     return 0;
@@ -47,12 +47,11 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
     g->dim = dim;
     g->capacity = capacity;
     AMSPH_CHECK(layout_cells(g, dim, lo, hi, periodic, support));
-    const size_t buckets = (size_t)g->geometry.total_cells + 1;
+    const size_t buckets = (size_t)grid_departed_bucket(&g->geometry) + 1;
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->cell));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->order));
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->count));
-    AMSPH_CHECK(amsph_buffer_alloc(b, buckets * sizeof(int), &g->fill));
     AMSPH_CHECK(amsph_buffer_alloc(b, AMSPH_SCAN_CHUNKS * sizeof(int), &g->chunk_total));
     return 0;
 }
@@ -63,7 +62,6 @@ void amsph_grid_free(amsph_grid *g, amsph_backend *b)
     amsph_buffer_free(b, g->order);
     amsph_buffer_free(b, g->cell_start);
     amsph_buffer_free(b, g->count);
-    amsph_buffer_free(b, g->fill);
     amsph_buffer_free(b, g->chunk_total);
     for (int w = 0; w <= AMSPH_GRID_SCRATCH; ++w)
         amsph_buffer_free(b, g->scratch[w]);
@@ -112,15 +110,17 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
     const int n = p->n;
     if (n > g->capacity)
         return amsph_fail("grid: %d particles exceed the grid's capacity of %d", n, g->capacity);
-    const int buckets = g->geometry.total_cells + 1;
+    const int departed = grid_departed_bucket(&g->geometry), buckets = departed + 1;
+    const amsph_arg geometry = amsph_arg_bytes(&g->geometry, sizeof g->geometry);
     AMSPH_CHECK(fill_zero(b, g->count, buckets + 1));
-    AMSPH_CHECK(fill_zero(b, g->fill, buckets));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_bin", n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
-                             amsph_arg_int(n), amsph_arg_bytes(&g->geometry, sizeof g->geometry),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(n), geometry,
                              amsph_arg_buffer(g->cell), amsph_arg_buffer(g->count)));
     AMSPH_CHECK(amsph_exclusive_scan(b, g->count, g->cell_start, g->chunk_total, buckets + 1));
+    /* the histogram, scanned, now counts the slots taken per bucket in the scatter */
+    AMSPH_CHECK(fill_zero(b, g->count, buckets));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_scatter", n, amsph_arg_buffer(g->cell), amsph_arg_int(n),
-                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->fill),
+                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->count),
                              amsph_arg_buffer(g->order)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_order_cells", buckets, amsph_arg_buffer(g->order),
                              amsph_arg_buffer(g->cell_start), amsph_arg_int(buckets),
@@ -131,8 +131,9 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
     AMSPH_CHECK(reorder(g, b, &g->cell, 1, n));
 
     int kept = 0;
-    AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)g->geometry.total_cells * sizeof(int),
-                               sizeof(int), &kept));
+    AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)departed * sizeof(int), sizeof(int), &kept));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_cell_of_bucket", kept, amsph_arg_buffer(g->cell), amsph_arg_int(kept),
+                             geometry));
     p->removed += n - kept;
     p->n = kept;
     return 0;

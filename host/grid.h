@@ -15,10 +15,11 @@ typedef struct {
     grid_geometry geometry;
     int dim;
     int capacity;               /* particles the grid buffers hold */
-    amsph_buffer *cell;         /* bucket of each particle, in sorted order after a sort */
-    amsph_buffer *cell_start;   /* total_cells + 2 ints: first particle of each bucket */
-    amsph_buffer *count;        /* histogram, then the prefix sum's input */
-    amsph_buffer *fill;         /* slots taken per bucket during the scatter */
+    amsph_buffer *cell;         /* cell of each particle, in sorted order after a sort */
+    amsph_buffer *cell_start;   /* GRID_SETS total_cells + 2 ints: first particle of each bucket
+                                   (kernels/grid_geometry.h) */
+    amsph_buffer *count;        /* histogram, the prefix sum's input; then the slots taken per
+                                   bucket during the scatter */
     amsph_buffer *order;        /* sorted slot -> old index */
     amsph_buffer *chunk_total;  /* prefix-sum chunk totals */
     amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];

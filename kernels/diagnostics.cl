@@ -47,12 +47,13 @@ KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
     }
 }
 
-/* Global ids of every b != a with |r_ab| < radius, up to max_neighbours;
- * count[a] is the true number even when the list is cut. */
+/* Global ids of every b != a with |r_ab| < radius in the sets first_set
+ * .. last_set (GRID_SET_*), up to max_neighbours; count[a] is the true
+ * number even when the list is cut. */
 KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
                            GLOBAL const int *cell, int n, grid_geometry g,
-                           GLOBAL const int *cell_start, real radius, int max_neighbours,
-                           GLOBAL int *count, GLOBAL uint *neighbours)
+                           GLOBAL const int *cell_start, real radius, int first_set, int last_set,
+                           int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -61,7 +62,7 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
         int found = 0;
         real x_a[3];
         grid_point(position, a, x_a);
-        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, radius)
+        FOR_EACH_NEIGHBOUR_IN(b, run, &g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, radius, first_set, last_set)
         {
             real r_ab[3];
             grid_displacement(&run, position, b, r_ab);

@@ -78,7 +78,7 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       GLOBAL const real *reference_density, int n, grid_geometry g,
+                       GLOBAL const real *reference_density, GLOBAL const real *gamma, int n, grid_geometry g,
                        GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
                        GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *gas_wall_pressure,
                        GLOBAL real *wall_velocity)
@@ -96,22 +96,26 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
             real sum_u[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real all_w = REAL(0.0);
-            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-            {
-                if (kind[b] == KIND_FLUID) {
-                    real r_ab[3];
-                    grid_displacement(&run, position, b, r_ab);
-                    const real r2 = dot3(r_ab, r_ab);
-                    if (r2 >= support * support)
-                        continue; /* W = 0 */
-                    const real w = smoothing_w(sqrt(r2), p.h);
-                    const int phase = material_is_gas(materials, material[b]);
-                    sum_w[phase] += w;
-                    sum_p[phase] += pressure[b] * w;
-                    all_w += w;
-                    for (int d = 0; d < 3; ++d) {
-                        sum_rho_r[phase][d] += density[b] * r_ab[d] * w;
-                        sum_u[d] += velocity[3 * b + d] * w;
+            /* Gamma = 0: continuity found no fluid within the support at these
+             * positions, and the sums stay 0 */
+            if (gamma[a] > REAL(0.0)) {
+                FOR_EACH_BODY_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
+                {
+                    if (kind[b] == KIND_FLUID) {
+                        real r_ab[3];
+                        grid_displacement(&run, position, b, r_ab);
+                        const real r2 = dot3(r_ab, r_ab);
+                        if (r2 >= support * support)
+                            continue; /* W = 0 */
+                        const real w = smoothing_w(sqrt(r2), p.h);
+                        const int phase = material_is_gas(materials, material[b]);
+                        sum_w[phase] += w;
+                        sum_p[phase] += pressure[b] * w;
+                        all_w += w;
+                        for (int d = 0; d < 3; ++d) {
+                            sum_rho_r[phase][d] += density[b] * r_ab[d] * w;
+                            sum_u[d] += velocity[3 * b + d] * w;
+                        }
                     }
                 }
             }
@@ -156,6 +160,67 @@ static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
     return material_is_gas(materials, mat_a) == material_is_gas(materials, mat_b);
 }
 
+/* The sums of continuity over the neighbours of particle a in the sets
+ * first_set .. last_set (GRID_SET_*), added to sums. */
+typedef struct {
+    real shepard, drho, diffusion, nearest;
+    int fluid_near; /* a fluid particle other than a lies within the support */
+} continuity_sums;
+
+static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBAL const real *position,
+                                       GLOBAL const real *velocity, GLOBAL const real *density,
+                                       GLOBAL const real *reference_density, GLOBAL const real *mass,
+                                       GLOBAL const int *kind, GLOBAL const int *material,
+                                       GLOBAL const int *cell, const grid_geometry *g,
+                                       GLOBAL const int *cell_start, GLOBAL const real *materials,
+                                       const fluid_params *p, continuity_sums *sums_io)
+{
+    continuity_sums sums = *sums_io; /* private: kept in registers, not stored per pair */
+    int cc[3];
+    grid_cell_coords(g, cell[a], cc);
+    real x_a[3];
+    grid_point(position, a, x_a);
+    const real support = SUPPORT_OVER_H * p->h;
+    const int fluid_a = kind[a] == KIND_FLUID;
+    const int mat_a = material[a];
+    const real rho_a = density[a];
+    const int shifted = p->density_diffusion == DIFFUSION_RUSSELL || p->density_diffusion == DIFFUSION_FOURTAKAS;
+    const real q_a = rho_a - (shifted ? reference_density[a] : REAL(0.0));
+    FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, support, first_set, last_set)
+    {
+        real r_ab[3];
+        grid_displacement(&run, position, b, r_ab);
+        const real r2 = dot3(r_ab, r_ab);
+        if (r2 >= support * support)
+            continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
+        const real r = sqrt(r2);
+        const real v_b = mass[b] / density[b];
+        sums.shepard += smoothing_w(r, p->h) * v_b;
+        sums.fluid_near |= b != a && kind[b] == KIND_FLUID;
+        if (fluid_a && b != a) {
+            sums.nearest = r < sums.nearest ? r : sums.nearest; /* fmin, without a call to libm in C */
+            const real f = smoothing_grad_factor(r, p->h); /* grad_a W_ab = f r_ab */
+            real u_ab[3];
+            for (int d = 0; d < 3; ++d)
+                u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
+            sums.drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
+            if (kind[b] == KIND_FLUID && p->density_diffusion != DIFFUSION_NONE &&
+                same_phase(materials, mat_a, material[b])) {
+                const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
+                real dq = q_a - q_b;
+                if (p->density_diffusion == DIFFUSION_FOURTAKAS) {
+                    /* minus the hydrostatic density difference of the pair,
+                     * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
+                    const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
+                    dq -= reference_density[b] * dot3(p->gravity, r_ab) / (c0_b * c0_b);
+                }
+                sums.diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
+            }
+        }
+    }
+    *sums_io = sums;
+}
+
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
  * velocity, so that the density advances like a position (see
  * kernels/integrate.cl):
@@ -163,8 +228,12 @@ static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
  *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
  * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
  * between fluid particles of the same phase only. closest[a] is the distance to the nearest
- * other particle, for the guards. Gamma is computed for every particle,
- * the rates for fluid particles. */
+ * other particle, for the guards. The rates are computed for fluid
+ * particles. Gamma is computed for every fluid particle, and for the others
+ * where a fluid particle lies within the support: only a fluid neighbour's
+ * pair force reads it (fluid_pair.h). Elsewhere it is 0, and such a particle
+ * reads no wall: the walls far from the fluid, most of a tank's, cost only
+ * a pass over the non-wall cells around them (kernels/grid_geometry.h). */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *density, GLOBAL const real *reference_density,
                        GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
@@ -174,55 +243,20 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
 {
     FOR_EACH_ITEM(a, n)
     {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        real x_a[3];
-        grid_point(position, a, x_a);
-        const real support = SUPPORT_OVER_H * p.h;
         const int fluid_a = kind[a] == KIND_FLUID;
-        const int mat_a = material[a];
-        const real rho_a = density[a];
-        const int shifted = p.density_diffusion == DIFFUSION_RUSSELL || p.density_diffusion == DIFFUSION_FOURTAKAS;
-        const real q_a = rho_a - (shifted ? reference_density[a] : REAL(0.0));
-        real shepard = REAL(0.0), drho = REAL(0.0), diffusion = REAL(0.0);
-        real nearest = REAL(1e30);
-        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-        {
-            real r_ab[3];
-            grid_displacement(&run, position, b, r_ab);
-            const real r2 = dot3(r_ab, r_ab);
-            if (r2 >= support * support)
-                continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
-            const real r = sqrt(r2);
-            const real v_b = mass[b] / density[b];
-            shepard += smoothing_w(r, p.h) * v_b;
-            if (fluid_a && b != a) {
-                nearest = r < nearest ? r : nearest; /* fmin, without a call to libm in C */
-                const real f = smoothing_grad_factor(r, p.h); /* grad_a W_ab = f r_ab */
-                real u_ab[3];
-                for (int d = 0; d < 3; ++d)
-                    u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
-                drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
-                if (kind[b] == KIND_FLUID && p.density_diffusion != DIFFUSION_NONE &&
-                    same_phase(materials, mat_a, material[b])) {
-                    const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
-                    real dq = q_a - q_b;
-                    if (p.density_diffusion == DIFFUSION_FOURTAKAS) {
-                        /* minus the hydrostatic density difference of the pair,
-                         * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
-                        const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
-                        dq -= reference_density[b] * dot3(p.gravity, r_ab) / (c0_b * c0_b);
-                    }
-                    diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, &p);
-                }
-            }
-        }
-        gamma[a] = shepard;
-        density_rate[a] = fluid_a ? drho + p.delta * p.h *
-                                               material_value(materials, mat_a, MATERIAL_SOUND_SPEED) *
-                                               diffusion
+        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(1e30), 0};
+        add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
+                            density, reference_density, mass, kind, material, cell, &g, cell_start, materials, &p,
+                            &sums);
+        if (!fluid_a && sums.fluid_near)
+            add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
+                                mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
+        gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
+        density_rate[a] = fluid_a ? sums.drho + p.delta * p.h *
+                                                    material_value(materials, material[a], MATERIAL_SOUND_SPEED) *
+                                                    sums.diffusion
                                   : REAL(0.0);
-        closest[a] = nearest;
+        closest[a] = sums.nearest;
     }
 }
 

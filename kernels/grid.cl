@@ -1,12 +1,14 @@
 /* Sorted particle grid, built on the device by a counting sort:
- *   grid_bin        wrap periodic coordinates, cell of each particle, histogram
+ *   grid_bin        wrap periodic coordinates, bucket of each particle (its cell
+ *                   in the set of its kind, kernels/grid_geometry.h), histogram
  *   scan_*          exclusive prefix sum of the histogram → cell_start
  *   grid_scatter    each particle to a slot of its cell
  *   grid_order_cells  within a cell, slots ordered by global id (deterministic)
  *   gather_words    reorder a field by the permutation
- * Cells are numbered x fastest; bucket total_cells collects particles that
- * left the domain (or whose position is not finite): they sort to the end and
- * the host drops them. */
+ *   grid_cell_of_bucket  the sorted buckets back to cells
+ * Cells are numbered x fastest; the last bucket collects particles that left
+ * the domain (or whose position is not finite): they sort to the end and the
+ * host drops them. */
 #include "device.h"
 #include "kinds.h"
 #include "neighbours.h"
@@ -46,8 +48,8 @@ KERNEL void departing_enthalpy(GLOBAL const real *position, GLOBAL const int *ki
     }
 }
 
-KERNEL void grid_bin(GLOBAL real *position, int n, grid_geometry g, GLOBAL int *cell,
-                     GLOBAL int *count)
+KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_geometry g,
+                     GLOBAL int *bucket_of, GLOBAL int *count)
 {
     FOR_EACH_ITEM(i, n)
     {
@@ -67,9 +69,19 @@ KERNEL void grid_bin(GLOBAL real *position, int n, grid_geometry g, GLOBAL int *
             index = (c < 0 || index < 0) ? -1 : index + c * stride;
             stride *= g.ncell[d];
         }
-        const int bucket = index < 0 ? g.total_cells : index;
-        cell[i] = bucket;
+        const int bucket = index < 0 ? grid_departed_bucket(&g) : grid_bucket(&g, index, kind[i] == KIND_WALL);
+        bucket_of[i] = bucket;
         ATOMIC_INC(&count[bucket]);
+    }
+}
+
+/* The cell of each sorted particle from its bucket (grid_bin). */
+KERNEL void grid_cell_of_bucket(GLOBAL int *cell, int n, grid_geometry g)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        if (cell[i] >= g.total_cells)
+            cell[i] -= g.total_cells;
     }
 }
 

@@ -1,7 +1,16 @@
 /* The grid a pair loop walks, passed to kernels by value; the host includes
  * it with AMSPH_SHARED_REAL defined as its amsph_real, so both sides share one
  * layout. Lengths in m. Cells are numbered x fastest; cell sizes are
- * cell_size except the last cell of an axis, which takes the remainder. */
+ * cell_size except the last cell of an axis, which takes the remainder.
+ *
+ * The particles are sorted into two sets of cells, each a full copy of the
+ * grid: first everything that is not a wall (fluid, solids, grains: the
+ * particles that move or change kind), then the walls, which never change
+ * kind. A particle's bucket is its cell plus total_cells if it is a wall;
+ * bucket 2 total_cells collects the particles that left the domain. A loop
+ * that needs only non-wall neighbours (the walls' state from the fluid)
+ * then reads no wall at all, and a wall far from any fluid costs nothing
+ * there. */
 #ifndef AMSPH_GRID_GEOMETRY_H
 #define AMSPH_GRID_GEOMETRY_H
 
@@ -22,8 +31,23 @@ typedef struct {
     AMSPH_SHARED_REAL cell_size; /* side of a cell, the kernel support / GRID_CELLS_PER_SUPPORT */
     int ncell[3];              /* cells per axis (1 for unused axes) */
     int periodic[3];           /* 1 where the axis wraps around */
-    int total_cells;           /* ncell[0] * ncell[1] * ncell[2]; bucket total_cells collects
-                                  particles that left the domain */
+    int total_cells;           /* ncell[0] * ncell[1] * ncell[2], the cells of one set */
 } grid_geometry;
+
+/* The sets of cells (see above), in sorted order. */
+#define GRID_SET_BODIES 0 /* fluid, solid and grain particles */
+#define GRID_SET_WALLS 1  /* wall particles */
+#define GRID_SETS 2
+
+/* The bucket of a particle of kind `is_wall` in cell `cell`, and the one of
+ * the particles that left the domain. */
+static inline int grid_bucket(const grid_geometry *g, int cell, int is_wall)
+{
+    return cell + (is_wall ? GRID_SET_WALLS * g->total_cells : 0);
+}
+static inline int grid_departed_bucket(const grid_geometry *g)
+{
+    return GRID_SETS * g->total_cells;
+}
 
 #endif

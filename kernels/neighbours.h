@@ -1,8 +1,10 @@
 /* The sorted grid as seen by a kernel: cell coordinates, and the loop over
  * the particles of the cells around a point that come within a radius of
- * it. Particles are sorted by cell, cells numbered x fastest:
- * cell_start[c] .. cell_start[c+1] are the particles of cell c, and the
- * cells of a row along x are one contiguous range of particles. */
+ * it. Particles are sorted by set (walls last) and cell, cells numbered x
+ * fastest (kernels/grid_geometry.h): cell_start[k t + c] .. cell_start[k t
+ * + c + 1] are the particles of set k in cell c (t = total_cells), and the
+ * cells of a row along x are one contiguous range of particles in each
+ * set. */
 #ifndef AMSPH_NEIGHBOURS_H
 #define AMSPH_NEIGHBOURS_H
 
@@ -124,41 +126,48 @@ static inline real grid_slab_room(const grid_span *s, int oz)
     return s->extent2 - s->gap2[1][oz + GRID_MAX_REACH];
 }
 
-/* A run of a neighbour loop: the particles first .. end - 1 of consecutive
- * cells along x in one row of the span, and the point as they see it: the
- * point less the periodic image of the run (grid_span), so that r_ab =
- * point - r_b for the point as r_a. On a periodic x axis a row comes in
- * three parts: the cells wrapped from the axis's upper end (part -1), the
- * cells within the axis (0) and those wrapped from its lower end (+1), each
- * possibly empty. */
+/* A run of a neighbour loop: the particles first .. end - 1 of one set of
+ * cells (GRID_SET_*) in consecutive cells along x in one row of the span,
+ * and the point as they see it: the point less the periodic image of the
+ * run (grid_span), so that r_ab = point - r_b for the point as r_a. On a
+ * periodic x axis a row comes in three parts: the cells wrapped from the
+ * axis's upper end (part -1), the cells within the axis (0) and those
+ * wrapped from its lower end (+1), each possibly empty. A row's runs go
+ * part by part within each set, the sets first_set .. last_set in turn. */
 typedef struct {
     int first, end;
     real point[3];
-    int part, last_part; /* the part of the row this run holds, and the row's last */
-    int row_cell;        /* index of the row's cell at x = 0 */
-    int x_lo, x_hi;      /* the row's cells along x, unwrapped */
+    int part, first_part, last_part; /* the part of the row this run holds, and the row's parts */
+    int set, last_set;               /* the set of this run, and the loop's last */
+    int row_cell;                    /* index of the row's cell at x = 0 */
+    int x_lo, x_hi;                  /* the row's cells along x, unwrapped */
 } grid_run;
 
-/* Part `part` of a row on a periodic x axis: the row's cells u = x_lo .. x_hi
- * with part * ncell <= u < (part + 1) * ncell, at u - part * ncell. */
-static inline void grid_run_part(const grid_geometry *g, GLOBAL const int *cell_start, real x, grid_run *run,
-                                 int part)
+/* first and end of the run's set and part: the row's cells u = x_lo ..
+ * x_hi with part * ncell <= u < (part + 1) * ncell, at u - part * ncell (on
+ * a closed x axis, part 0: all of them). */
+static inline void grid_run_locate(const grid_geometry *g, GLOBAL const int *cell_start, real x, grid_run *run)
 {
-    const int n = g->ncell[0];
+    const int n = g->ncell[0], part = run->part;
+    const int row = run->row_cell + run->set * g->total_cells - part * n;
+    if (!g->periodic[0]) {
+        run->first = cell_start[row + run->x_lo];
+        run->end = cell_start[row + run->x_hi + 1];
+        return;
+    }
     const int u_lo = run->x_lo > part * n ? run->x_lo : part * n;
     const int u_hi = run->x_hi < part * n + n - 1 ? run->x_hi : part * n + n - 1;
-    run->part = part;
     run->point[0] = x - (real)part * g->length[0];
-    run->first = u_lo <= u_hi ? cell_start[run->row_cell + u_lo - part * n] : 0;
-    run->end = u_lo <= u_hi ? cell_start[run->row_cell + u_hi - part * n + 1] : 0;
+    run->first = u_lo <= u_hi ? cell_start[row + u_lo] : 0;
+    run->end = u_lo <= u_hi ? cell_start[row + u_hi + 1] : 0;
 }
 
-/* The first run of the span's row (oy, oz), whose y offset is within the
- * radius in its slab (room > its squared distance): its cells along x
- * trimmed to those within the radius of the point (gap_x^2 + gap_y^2 +
- * gap_z^2 < extent^2). */
+/* The first run of the span's row (oy, oz) in the sets first_set ..
+ * last_set, whose y offset is within the radius in its slab (room > its
+ * squared distance): its cells along x trimmed to those within the radius
+ * of the point (gap_x^2 + gap_y^2 + gap_z^2 < extent^2). */
 static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
-                                real slab_room, int oy, int oz)
+                                real slab_room, int oy, int oz, int first_set, int last_set)
 {
     grid_run run;
     const int ky = oy + GRID_MAX_REACH, kz = oz + GRID_MAX_REACH;
@@ -169,48 +178,60 @@ static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_s
     run.point[2] = s->point[1][kz];
     run.x_lo = s->cx - grid_cells_within(s->below2[0], s->reach, room);
     run.x_hi = s->cx + grid_cells_within(s->above2[0], s->reach, room);
-    run.part = run.last_part = 0;
-    if (g->periodic[0]) {
-        run.last_part = 1;
-        grid_run_part(g, cell_start, s->x, &run, -1);
-    } else {
-        run.first = cell_start[run.row_cell + run.x_lo];
-        run.end = cell_start[run.row_cell + run.x_hi + 1];
-    }
+    run.first_part = run.part = g->periodic[0] ? -1 : 0;
+    run.last_part = g->periodic[0] ? 1 : 0;
+    run.set = first_set;
+    run.last_set = last_set;
+    grid_run_locate(g, cell_start, s->x, &run);
     return run;
 }
 
-/* The next run of the row, if any (run->part > run->last_part: none). */
+/* The next run of the row, if any (run->set > run->last_set: none). */
 static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
                                  grid_run *run)
 {
-    if (++run->part <= run->last_part)
-        grid_run_part(g, cell_start, s->x, run, run->part);
+    if (++run->part > run->last_part) {
+        run->part = run->first_part;
+        if (++run->set > run->last_set)
+            return;
+    }
+    grid_run_locate(g, cell_start, s->x, run);
 }
 
-/* Loop b over the particles of the cells within `reach` (<= GRID_MAX_REACH)
- * of cell cc that come within `radius` of the point x (a private real[3];
- * grid_point), one run (grid_run, named `run`) of contiguous particles per
- * row of cells and periodic image, the rows and their cells trimmed to the
- * sphere: with cells of half the kernel support, 3D, 2.5 candidates per
- * particle within the support.
- *   FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x, cell_start, reach, radius) { ... } */
-#define FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, reach, radius)                       \
+/* Loop b over the particles of the sets first_set .. last_set (GRID_SET_*)
+ * in the cells within `reach` (<= GRID_MAX_REACH) of cell cc that come
+ * within `radius` of the point x (a private real[3]; grid_point), one run
+ * (grid_run, named `run`) of contiguous particles per row of cells, set
+ * and periodic image, the rows and their cells trimmed to the sphere: with
+ * cells of half the kernel support, 3D, 2.5 candidates per particle within
+ * the support.
+ *   FOR_EACH_NEIGHBOUR_IN(b, run, &g, cc, x, cell_start, reach, radius, first_set, last_set) { ... } */
+#define FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, reach, radius, from_set, to_set)      \
     for (grid_span nb_s_, *nb_once_ = grid_near_span(&nb_s_, (g), (x), (cc), (reach), (radius));   \
          nb_once_; nb_once_ = 0)                                                                   \
         for (int nb_z_ = nb_s_.lo_z; nb_z_ <= nb_s_.hi_z; ++nb_z_)                                 \
             for (real nb_room_ = grid_slab_room(&nb_s_, nb_z_), *nb_slab_ = &nb_room_; nb_slab_;    \
                  nb_slab_ = 0)                                                                     \
-                for (int nb_y_ = -grid_cells_within(nb_s_.below2[1], (reach), nb_room_),      \
-                         nb_y_hi_ = grid_cells_within(nb_s_.above2[1], (reach), nb_room_);     \
+                for (int nb_y_ = -grid_cells_within(nb_s_.below2[1], (reach), nb_room_),          \
+                         nb_y_hi_ = grid_cells_within(nb_s_.above2[1], (reach), nb_room_);         \
                      nb_y_ <= nb_y_hi_; ++nb_y_)                                                   \
-                    for (grid_run run = grid_row((g), (cell_start), &nb_s_, nb_room_, nb_y_, nb_z_); \
-                         run.part <= run.last_part; grid_run_next((g), (cell_start), &nb_s_, &run)) \
+                    for (grid_run run = grid_row((g), (cell_start), &nb_s_, nb_room_, nb_y_, nb_z_,  \
+                                                 (from_set), (to_set));                           \
+                         run.set <= run.last_set; grid_run_next((g), (cell_start), &nb_s_, &run))   \
                         for (int b = run.first; b < run.end; ++b)
+
+/* The loop over every particle (both sets) within `reach` cells. */
+#define FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, reach, radius)                       \
+    FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, reach, radius, GRID_SET_BODIES, GRID_SET_WALLS)
 
 /* The neighbour loop of a radius up to the kernel support. */
 #define FOR_EACH_NEIGHBOUR(b, run, g, cc, x, cell_start, radius)                                   \
     FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius)
+
+/* The same loop over the particles that are not walls (GRID_SET_BODIES). */
+#define FOR_EACH_BODY_NEIGHBOUR(b, run, g, cc, x, cell_start, radius)                              \
+    FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius, GRID_SET_BODIES, \
+                          GRID_SET_BODIES)
 
 /* r_ab = r_a - r_b for the loop's point as r_a and the image of b next to it. */
 static inline void grid_displacement(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])

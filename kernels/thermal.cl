@@ -75,15 +75,13 @@ KERNEL void wall_temperature(GLOBAL const real *position, GLOBAL const real *tem
             real x_a[3];
             grid_point(position, a, x_a);
             real sum_w = REAL(0.0), sum_t = REAL(0.0);
-            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, SUPPORT_OVER_H * p.h)
+            FOR_EACH_BODY_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, SUPPORT_OVER_H * p.h)
             {
-                if (kind[b] != KIND_WALL) {
-                    real r_ab[3];
-                    grid_displacement(&run, position, b, r_ab);
-                    const real w = smoothing_w(sqrt(thermal_dot3(r_ab, r_ab)), p.h);
-                    sum_w += w;
-                    sum_t += w * temperature[b];
-                }
+                real r_ab[3];
+                grid_displacement(&run, position, b, r_ab);
+                const real w = smoothing_w(sqrt(thermal_dot3(r_ab, r_ab)), p.h);
+                sum_w += w;
+                sum_t += w * temperature[b];
             }
             const real wall = temperature_of_enthalpy(table, material[a], enthalpy[a]);
             ghost = sum_w > REAL(0.0) ? REAL(2.0) * wall - sum_t / sum_w : wall;

@@ -89,9 +89,10 @@ static int contains(const unsigned *list, int count, unsigned id)
     return 0;
 }
 
-/* Kernel neighbour lists against all pairs; pairs within 1e-5 of the radius
- * are ambiguous in float and not counted either way. */
-static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3])
+/* Kernel neighbour lists against all pairs, over both sets of cells and
+ * over the non-wall set alone (fixture_is_wall); pairs within 1e-5 of the
+ * radius are ambiguous in float and not counted either way. */
+static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3], int last_set)
 {
     const int n = f->p.n;
     amsph_buffer *count_buf = NULL, *list_buf = NULL;
@@ -100,7 +101,8 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
     CHECK_OK(AMSPH_LAUNCH(f->b, "neighbour_list", n, amsph_arg_buffer(f->p.field[AMSPH_FIELD_POSITION]),
                           amsph_arg_buffer(f->p.field[AMSPH_FIELD_ID]), amsph_arg_buffer(f->g.cell),
                           amsph_arg_int(n), fixture_geometry(f), amsph_arg_buffer(f->g.cell_start),
-                          amsph_arg_real(support), amsph_arg_int(MAX_NEIGHBOURS),
+                          amsph_arg_real(support), amsph_arg_int(GRID_SET_BODIES), amsph_arg_int(last_set),
+                          amsph_arg_int(MAX_NEIGHBOURS),
                           amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf)));
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&f->p, &h));
@@ -116,7 +118,7 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
         const unsigned *mine = list + (size_t)a * MAX_NEIGHBOURS;
         int expected = 0, ambiguous = 0;
         for (int b = 0; b < n; ++b) {
-            if (b == a)
+            if (b == a || (last_set == GRID_SET_BODIES && fixture_is_wall((int)id[b])))
                 continue;
             const double r = sqrt(distance2(x, a, b, periodic));
             const int listed = contains(mine, count[a], id[b]);
@@ -132,8 +134,8 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
         extra += count[a] - ambiguous - expected;
         pairs += expected;
     }
-    CHECK(missing == 0 && extra == 0, "%s, %dD: %lld pairs missed, %lld extra, of %lld", in->name,
-          f->dim, missing, extra, pairs);
+    CHECK(missing == 0 && extra == 0, "%s, %dD, sets 0-%d: %lld pairs missed, %lld extra, of %lld", in->name,
+          f->dim, last_set, missing, extra, pairs);
     CHECK(pairs > n, "%s, %dD: only %lld pairs; the input does not test much", in->name, f->dim, pairs);
     free(count);
     free(list);
@@ -155,7 +157,8 @@ static void test_neighbours(amsph_backend *b, int dim)
         CHECK(status == 0, "%s: %s", in->name, amsph_last_error());
         if (status == 0) {
             CHECK(f.p.n == in->n, "%s: %d of %d particles kept", in->name, f.p.n, in->n);
-            check_pairs(&f, in, periodic);
+            check_pairs(&f, in, periodic, GRID_SET_WALLS);
+            check_pairs(&f, in, periodic, GRID_SET_BODIES);
         }
         fixture_free(&f);
         free(x);
@@ -200,10 +203,11 @@ static void test_sort_keeps_fields(amsph_backend *b, int dim)
 
     amsph_host_particles s;
     CHECK_OK(amsph_particles_download(&p, &s));
-    int *cell = malloc((size_t)p.n * sizeof *cell);
-    int *start = malloc(((size_t)g.geometry.total_cells + 2) * sizeof *start);
+    int *cell = malloc((size_t)p.n * sizeof *cell), *bucket = malloc((size_t)p.n * sizeof *bucket);
+    const int departed = grid_departed_bucket(&g.geometry);
+    int *start = malloc(((size_t)departed + 2) * sizeof *start);
     CHECK_OK(amsph_download(b, g.cell, 0, (size_t)p.n * sizeof *cell, cell));
-    CHECK_OK(amsph_download(b, g.cell_start, 0, ((size_t)g.geometry.total_cells + 2) * sizeof *start, start));
+    CHECK_OK(amsph_download(b, g.cell_start, 0, ((size_t)departed + 2) * sizeof *start, start));
     char *seen = calloc((size_t)n, 1);
     int bad_fields = 0, bad_order = 0, bad_cells = 0;
     const unsigned *id = s.data[AMSPH_FIELD_ID];
@@ -217,9 +221,11 @@ static void test_sort_keeps_fields(amsph_backend *b, int dim)
         bad_fields += amsph_host_real(&s, AMSPH_FIELD_DENSITY)[k] != (amsph_real)(1000 + i);
         bad_fields += ((int *)s.data[AMSPH_FIELD_KIND])[k] != i % 3;
         bad_fields += ((int *)s.data[AMSPH_FIELD_MATERIAL])[k] != i % 5;
-        bad_cells += !(start[cell[k]] <= k && k < start[cell[k] + 1]);
+        bad_cells += !(cell[k] >= 0 && cell[k] < g.geometry.total_cells);
+        bucket[k] = grid_bucket(&g.geometry, cell[k], i % 3 == KIND_WALL); /* walls in their own set */
+        bad_cells += !(start[bucket[k]] <= k && k < start[bucket[k] + 1]);
         if (k > 0)
-            bad_order += cell[k] < cell[k - 1] || (cell[k] == cell[k - 1] && id[k] <= id[k - 1]);
+            bad_order += bucket[k] < bucket[k - 1] || (bucket[k] == bucket[k - 1] && id[k] <= id[k - 1]);
     }
     int duplicates = 0;
     for (int i = 0; i < n; ++i)
@@ -227,10 +233,10 @@ static void test_sort_keeps_fields(amsph_backend *b, int dim)
     CHECK(bad_fields == 0, "%dD: %d field values separated from their particle", dim, bad_fields);
     CHECK(duplicates == 0, "%dD: %d particles appear twice", dim, duplicates);
     CHECK(bad_cells == 0, "%dD: %d particles outside their cell range", dim, bad_cells);
-    CHECK(bad_order == 0, "%dD: %d particles out of (cell, id) order", dim, bad_order);
-    CHECK(start[g.geometry.total_cells] == p.n, "%dD: cell ranges end at %d, not %d", dim,
-          start[g.geometry.total_cells], p.n);
+    CHECK(bad_order == 0, "%dD: %d particles out of (set, cell, id) order", dim, bad_order);
+    CHECK(start[departed] == p.n, "%dD: cell ranges end at %d, not %d", dim, start[departed], p.n);
     free(seen);
+    free(bucket);
     free(cell);
     free(start);
     free(x);
