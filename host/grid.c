@@ -132,7 +132,7 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
 
     int kept = 0;
     AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)departed * sizeof(int), sizeof(int), &kept));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_cell_of_bucket", kept, amsph_arg_buffer(g->cell), amsph_arg_int(kept),
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_cells_of_buckets", kept, amsph_arg_buffer(g->cell), amsph_arg_int(kept),
                              geometry));
     p->removed += n - kept;
     p->n = kept;

@@ -13,7 +13,8 @@
  *     arguments are `GLOBAL T *`, others are passed by value;
  *   - the work-item loop is `FOR_EACH_ITEM(i, n) { ... }`, with no `return`
  *     or `continue` at its top level (the C form is an OpenMP `for`);
- *   - helpers are `static inline`; no vector-type arithmetic (float4 + float4),
+ *   - helpers are `static inline` (PAIR_INLINE for the body of a pair loop,
+ *     which the C compiler would otherwise call); no vector-type arithmetic (float4 + float4),
  *     use scalar components; no file-scope variables (an offloaded loop
  *     reaches only the kernel's arguments and locals);
  *   - a pair loop gathers: item a reads b and writes only a, so no atomics
@@ -36,12 +37,16 @@
     const int i = (int)get_global_id(0);                                                           \
     if (i < (n))
 #define ATOMIC_INC(p) atomic_inc(p)
+#define PAIR_INLINE static inline
 
 #else /* C11 for the OpenMP backend */
 
 #include <tgmath.h> /* sqrt, fmax, ... on `real` as in OpenCL */
 #define KERNEL static
 #define GLOBAL
+/* a pair loop's body, inlined: the call and its dozen arguments per pair
+ * cost more than the force's arithmetic (OpenCL compilers inline anyway) */
+#define PAIR_INLINE static inline __attribute__((always_inline))
 #if defined(_OPENMP) && AMSPH_OMP_OFFLOAD
 /* Each loop is a target region on the default device. Every buffer has a
  * device copy associated with its host addresses (host/backend_openmp.c), and

@@ -96,6 +96,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
             real sum_u[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real all_w = REAL(0.0);
+            const smoothing_scale scale = smoothing_scale_of(p.h);
             /* Gamma = 0: continuity found no fluid within the support at these
              * positions, and the sums stay 0 */
             if (gamma[a] > REAL(0.0)) {
@@ -107,7 +108,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                         const real r2 = dot3(r_ab, r_ab);
                         if (r2 >= support * support)
                             continue; /* W = 0 */
-                        const real w = smoothing_w(sqrt(r2), p.h);
+                        const real w = smoothing_w_at(&scale, sqrt(r2));
                         const int phase = material_is_gas(materials, material[b]);
                         sum_w[phase] += w;
                         sum_p[phase] += pressure[b] * w;
@@ -186,6 +187,7 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
     const real rho_a = density[a];
     const int shifted = p->density_diffusion == DIFFUSION_RUSSELL || p->density_diffusion == DIFFUSION_FOURTAKAS;
     const real q_a = rho_a - (shifted ? reference_density[a] : REAL(0.0));
+    const smoothing_scale scale = smoothing_scale_of(p->h);
     FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, support, first_set, last_set)
     {
         real r_ab[3];
@@ -195,11 +197,11 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
             continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
         const real r = sqrt(r2);
         const real v_b = mass[b] / density[b];
-        sums.shepard += smoothing_w(r, p->h) * v_b;
+        sums.shepard += smoothing_w_at(&scale, r) * v_b;
         sums.fluid_near |= b != a && kind[b] == KIND_FLUID;
         if (fluid_a && b != a) {
             sums.nearest = r < sums.nearest ? r : sums.nearest; /* fmin, without a call to libm in C */
-            const real f = smoothing_grad_factor(r, p->h); /* grad_a W_ab = f r_ab */
+            const real f = smoothing_grad_factor_at(&scale, r); /* grad_a W_ab = f r_ab */
             real u_ab[3];
             for (int d = 0; d < 3; ++d)
                 u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
@@ -335,7 +337,8 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
-            const real w_dx = smoothing_w(p.dx, p.h);
+            const smoothing_scale scale = smoothing_scale_of(p.h);
+            const real w_dx = smoothing_w_at(&scale, p.dx);
             real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
@@ -348,8 +351,8 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
-                const real fv = smoothing_grad_factor(r, p.h) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
-                const real w = smoothing_w(r, p.h) / w_dx;
+                const real fv = smoothing_grad_factor_at(&scale, r) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
+                const real w = smoothing_w_at(&scale, r) / w_dx;
                 const real clumping = REAL(1.0) + REAL(0.2) * (w * w) * (w * w);
                 for (int d = 0; d < 3; ++d) {
                     grad_c[d] += clumping * fv * r_ab[d];

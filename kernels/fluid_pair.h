@@ -122,6 +122,7 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
 typedef struct {
     real m, rho, p, mu, c, gamma;
     real u[3];
+    smoothing_scale scale; /* of W at the fluid's h */
     int gas; /* of a gas material: walls show it their gas_wall_pressure */
 } fluid_pair_side;
 
@@ -139,6 +140,7 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
     s.c = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
     s.gamma = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
     s.gas = material_is_gas(materials, material[a]);
+    s.scale = smoothing_scale_of(p->h);
     for (int d = 0; d < 3; ++d)
         s.u[d] = velocity[3 * a + d];
     return s;
@@ -160,7 +162,7 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
  * (a gas particle with the pressure extrapolated from the gas,
  * gas_wall_pressure; kernels/fluid.cl wall_state); viscosity sees their
  * ghost velocity (no-slip) or nothing (free-slip). */
-static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, const real r_ab[3], real r2,
+PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, const real r_ab[3], real r2,
                                            GLOBAL const real *velocity, GLOBAL const real *wall_velocity,
                                            GLOBAL const real *density, GLOBAL const real *pressure,
                                            GLOBAL const real *gas_wall_pressure,
@@ -169,7 +171,7 @@ static inline void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, co
                                            GLOBAL const int *material, GLOBAL const real *materials,
                                            const fluid_params *p, real acc[3])
 {
-    const real f = smoothing_grad_factor(sqrt(r2), p->h); /* grad_a W_ab = f r_ab */
+    const real f = smoothing_grad_factor_at(&s_a->scale, sqrt(r2)); /* grad_a W_ab = f r_ab */
     const int fluid_b = kind[b] == KIND_FLUID;
     const int mat_b = material[b];
     const real rho_b = density[b], m_b = mass[b];

@@ -5,7 +5,7 @@
  *   grid_scatter    each particle to a slot of its cell
  *   grid_order_cells  within a cell, slots ordered by global id (deterministic)
  *   gather_words    reorder a field by the permutation
- *   grid_cell_of_bucket  the sorted buckets back to cells
+ *   grid_cells_of_buckets  the sorted buckets back to cells
  * Cells are numbered x fastest; the last bucket collects particles that left
  * the domain (or whose position is not finite): they sort to the end and the
  * host drops them. */
@@ -69,20 +69,17 @@ KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_
             index = (c < 0 || index < 0) ? -1 : index + c * stride;
             stride *= g.ncell[d];
         }
-        const int bucket = index < 0 ? grid_departed_bucket(&g) : grid_bucket(&g, index, kind[i] == KIND_WALL);
+        const int set = kind[i] == KIND_WALL ? GRID_SET_WALLS : GRID_SET_BODIES;
+        const int bucket = index < 0 ? grid_departed_bucket(&g) : grid_bucket(&g, index, set);
         bucket_of[i] = bucket;
         ATOMIC_INC(&count[bucket]);
     }
 }
 
 /* The cell of each sorted particle from its bucket (grid_bin). */
-KERNEL void grid_cell_of_bucket(GLOBAL int *cell, int n, grid_geometry g)
+KERNEL void grid_cells_of_buckets(GLOBAL int *cell, int n, grid_geometry g)
 {
-    FOR_EACH_ITEM(i, n)
-    {
-        if (cell[i] >= g.total_cells)
-            cell[i] -= g.total_cells;
-    }
+    FOR_EACH_ITEM(i, n) { cell[i] = grid_cell_of_bucket(&g, cell[i]); }
 }
 
 /* Exclusive prefix sum in three passes over chunks of `chunk` entries:

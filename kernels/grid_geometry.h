@@ -3,14 +3,16 @@
  * layout. Lengths in m. Cells are numbered x fastest; cell sizes are
  * cell_size except the last cell of an axis, which takes the remainder.
  *
- * The particles are sorted into two sets of cells, each a full copy of the
- * grid: first everything that is not a wall (fluid, solids, grains: the
- * particles that move or change kind), then the walls, which never change
- * kind. A particle's bucket is its cell plus total_cells if it is a wall;
- * bucket 2 total_cells collects the particles that left the domain. A loop
- * that needs only non-wall neighbours (the walls' state from the fluid)
- * then reads no wall at all, and a wall far from any fluid costs nothing
- * there. */
+ * The particles of each row of cells along x are sorted into two sets:
+ * first everything that is not a wall (fluid, solids, grains: the particles
+ * that move or change kind), then the walls, which never change kind. The
+ * buckets go row by row, and within a row set by set, cell by cell along
+ * x: bucket (2 row + set) ncell[0] + x. Bucket 2 total_cells collects the
+ * particles that left the domain. A loop that needs only non-wall
+ * neighbours (the walls' state from the fluid) then reads no wall at all,
+ * and a wall far from any fluid costs nothing there; the rows keep both
+ * sets of a neighbourhood close in memory, and a contiguous range of
+ * particles a compact region of space (for the threads' shares). */
 #ifndef AMSPH_GRID_GEOMETRY_H
 #define AMSPH_GRID_GEOMETRY_H
 
@@ -39,11 +41,22 @@ typedef struct {
 #define GRID_SET_WALLS 1  /* wall particles */
 #define GRID_SETS 2
 
-/* The bucket of a particle of kind `is_wall` in cell `cell`, and the one of
- * the particles that left the domain. */
-static inline int grid_bucket(const grid_geometry *g, int cell, int is_wall)
+/* The bucket of cell `cell`'s particles of set `set` (its row's in that
+ * set from `row_bucket`), the cell of a bucket, and the bucket of the
+ * particles that left the domain. */
+static inline int grid_row_bucket(const grid_geometry *g, int row_cell, int set)
 {
-    return cell + (is_wall ? GRID_SET_WALLS * g->total_cells : 0);
+    return GRID_SETS * row_cell + set * g->ncell[0]; /* row_cell: the row's cell at x = 0 */
+}
+static inline int grid_bucket(const grid_geometry *g, int cell, int set)
+{
+    const int x = cell % g->ncell[0];
+    return grid_row_bucket(g, cell - x, set) + x;
+}
+static inline int grid_cell_of_bucket(const grid_geometry *g, int bucket)
+{
+    const int n = g->ncell[0];
+    return bucket / (GRID_SETS * n) * n + bucket % n;
 }
 static inline int grid_departed_bucket(const grid_geometry *g)
 {

@@ -1,10 +1,9 @@
 /* The sorted grid as seen by a kernel: cell coordinates, and the loop over
  * the particles of the cells around a point that come within a radius of
- * it. Particles are sorted by set (walls last) and cell, cells numbered x
- * fastest (kernels/grid_geometry.h): cell_start[k t + c] .. cell_start[k t
- * + c + 1] are the particles of set k in cell c (t = total_cells), and the
- * cells of a row along x are one contiguous range of particles in each
- * set. */
+ * it. Particles are sorted by row of cells along x, set (walls last) and
+ * cell (kernels/grid_geometry.h): cell_start[k] .. cell_start[k + 1] are
+ * the particles of bucket k (grid_bucket), and the cells of a row along x
+ * are one contiguous range of particles in each set. */
 #ifndef AMSPH_NEIGHBOURS_H
 #define AMSPH_NEIGHBOURS_H
 
@@ -61,7 +60,6 @@ static inline void grid_point(GLOBAL const real *position, int a, real x[3])
  * image (a particle's image next to x is r_b + image, image the domain
  * length where o wraps below the axis's start, minus it above its end). */
 typedef struct {
-    int reach;
     real below2[3][GRID_MAX_REACH], above2[3][GRID_MAX_REACH];
     real gap2[2][GRID_SPAN_WIDTH];
     int row_cell[2][GRID_SPAN_WIDTH];
@@ -89,7 +87,6 @@ static inline grid_span *grid_near_span(grid_span *s, const grid_geometry *g, co
 {
     const real extent = radius / g->cell_size + GRID_SPAN_SLACK;
     s->extent2 = extent * extent;
-    s->reach = reach;
     s->cx = cc[0];
     s->x = x[0];
     for (int d = 0, stride = 1; d < 3; stride *= g->ncell[d], ++d) {
@@ -149,7 +146,7 @@ typedef struct {
 static inline void grid_run_locate(const grid_geometry *g, GLOBAL const int *cell_start, real x, grid_run *run)
 {
     const int n = g->ncell[0], part = run->part;
-    const int row = run->row_cell + run->set * g->total_cells - part * n;
+    const int row = grid_row_bucket(g, run->row_cell, run->set) - part * n;
     if (!g->periodic[0]) {
         run->first = cell_start[row + run->x_lo];
         run->end = cell_start[row + run->x_hi + 1];
@@ -163,11 +160,12 @@ static inline void grid_run_locate(const grid_geometry *g, GLOBAL const int *cel
 }
 
 /* The first run of the span's row (oy, oz) in the sets first_set ..
- * last_set, whose y offset is within the radius in its slab (room > its
+ * last_set, `reach` cells to either side of the span's centre (the
+ * span's; a constant where the loop's is, which unrolls the counts), whose y offset is within the radius in its slab (room > its
  * squared distance): its cells along x trimmed to those within the radius
  * of the point (gap_x^2 + gap_y^2 + gap_z^2 < extent^2). */
 static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_start, const grid_span *s,
-                                real slab_room, int oy, int oz, int first_set, int last_set)
+                                int reach, real slab_room, int oy, int oz, int first_set, int last_set)
 {
     grid_run run;
     const int ky = oy + GRID_MAX_REACH, kz = oz + GRID_MAX_REACH;
@@ -176,8 +174,8 @@ static inline grid_run grid_row(const grid_geometry *g, GLOBAL const int *cell_s
     run.point[0] = s->x;
     run.point[1] = s->point[0][ky];
     run.point[2] = s->point[1][kz];
-    run.x_lo = s->cx - grid_cells_within(s->below2[0], s->reach, room);
-    run.x_hi = s->cx + grid_cells_within(s->above2[0], s->reach, room);
+    run.x_lo = s->cx - grid_cells_within(s->below2[0], reach, room);
+    run.x_hi = s->cx + grid_cells_within(s->above2[0], reach, room);
     run.first_part = run.part = g->periodic[0] ? -1 : 0;
     run.last_part = g->periodic[0] ? 1 : 0;
     run.set = first_set;
@@ -215,7 +213,7 @@ static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_
                 for (int nb_y_ = -grid_cells_within(nb_s_.below2[1], (reach), nb_room_),          \
                          nb_y_hi_ = grid_cells_within(nb_s_.above2[1], (reach), nb_room_);         \
                      nb_y_ <= nb_y_hi_; ++nb_y_)                                                   \
-                    for (grid_run run = grid_row((g), (cell_start), &nb_s_, nb_room_, nb_y_, nb_z_,  \
+                    for (grid_run run = grid_row((g), (cell_start), &nb_s_, (reach), nb_room_, nb_y_, nb_z_, \
                                                  (from_set), (to_set));                           \
                          run.set <= run.last_set; grid_run_next((g), (cell_start), &nb_s_, &run))   \
                         for (int b = run.first; b < run.end; ++b)

@@ -222,7 +222,8 @@ static void test_sort_keeps_fields(amsph_backend *b, int dim)
         bad_fields += ((int *)s.data[AMSPH_FIELD_KIND])[k] != i % 3;
         bad_fields += ((int *)s.data[AMSPH_FIELD_MATERIAL])[k] != i % 5;
         bad_cells += !(cell[k] >= 0 && cell[k] < g.geometry.total_cells);
-        bucket[k] = grid_bucket(&g.geometry, cell[k], i % 3 == KIND_WALL); /* walls in their own set */
+        bucket[k] = grid_bucket(&g.geometry, cell[k], i % 3 == KIND_WALL ? GRID_SET_WALLS : GRID_SET_BODIES);
+        bad_cells += grid_cell_of_bucket(&g.geometry, bucket[k]) != cell[k];
         bad_cells += !(start[bucket[k]] <= k && k < start[bucket[k] + 1]);
         if (k > 0)
             bad_order += bucket[k] < bucket[k - 1] || (bucket[k] == bucket[k - 1] && id[k] <= id[k - 1]);
@@ -233,7 +234,7 @@ static void test_sort_keeps_fields(amsph_backend *b, int dim)
     CHECK(bad_fields == 0, "%dD: %d field values separated from their particle", dim, bad_fields);
     CHECK(duplicates == 0, "%dD: %d particles appear twice", dim, duplicates);
     CHECK(bad_cells == 0, "%dD: %d particles outside their cell range", dim, bad_cells);
-    CHECK(bad_order == 0, "%dD: %d particles out of (set, cell, id) order", dim, bad_order);
+    CHECK(bad_order == 0, "%dD: %d particles out of (row, set, cell, id) order", dim, bad_order);
     CHECK(start[departed] == p.n, "%dD: cell ranges end at %d, not %d", dim, start[departed], p.n);
     free(seen);
     free(bucket);
