@@ -1,6 +1,10 @@
 /* Weakly compressible SPH: continuity with delta-SPH and Shepard sums,
  * equation of state, wall states, and the pair forces (pressure, viscosity).
- * Pair loops gather: particle a reads its neighbours b and writes only a. */
+ * Pair loops gather: particle a reads its neighbours b and writes only a.
+ * Every pair term takes W(r_ab, h_ab), h_ab = (h_a + h_b) / 2
+ * (kernels/fluid_pair.h), over the largest support SUPPORT_OVER_H h_max:
+ * h0 for all with `smoothing_length: fixed`; with `volume` each fluid
+ * particle's h follows its volume (volume_smoothing_length). */
 #include "device.h"
 #include "fluid_pair.h"
 #include "fluid_params.h"
@@ -21,6 +25,33 @@ KERNEL void update_reference_density(GLOBAL const int *material, GLOBAL const re
     FOR_EACH_ITEM(a, n)
     {
         reference_density[a] = reference_density_of_temperature(materials, material[a], temperature[a]);
+    }
+}
+
+/* The d-th root of x, d the dimension. */
+static inline real dimension_root(real x)
+{
+#if AMSPH_DIM == 2
+    return sqrt(x);
+#else
+    return cbrt(x);
+#endif
+}
+
+/* Smoothing length that follows the particle volume (Russell 2018 Eq. 3.54),
+ * with SMOOTHING_VOLUME, after the density advanced:
+ *   h_a = h0 (V_a / V0)^(1/d),  V_a = m_a / rho_a,  V0 = dx^d
+ * for fluid particles (V0 the lattice volume every particle starts with: the
+ * scene gives each the mass rho dx^d); walls and solids keep h0. */
+KERNEL void volume_smoothing_length(GLOBAL const real *mass, GLOBAL const real *density, GLOBAL const int *kind,
+                                    int n, fluid_params p, GLOBAL real *smoothing_length)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real v0 = p.dx;
+        for (int d = 1; d < AMSPH_DIM; ++d)
+            v0 *= p.dx;
+        smoothing_length[a] = kind[a] == KIND_FLUID ? p.h * dimension_root(mass[a] / (density[a] * v0)) : p.h;
     }
 }
 
@@ -78,10 +109,10 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       GLOBAL const real *reference_density, int n, grid_geometry g,
-                       GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                       GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *gas_wall_pressure,
-                       GLOBAL real *wall_velocity)
+                       GLOBAL const real *reference_density, GLOBAL const real *smoothing_length, int n,
+                       grid_geometry g, GLOBAL const int *cell_start, GLOBAL const real *materials,
+                       fluid_params p, GLOBAL real *density, GLOBAL real *pressure,
+                       GLOBAL real *gas_wall_pressure, GLOBAL real *wall_velocity)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -90,7 +121,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             grid_cell_coords(&g, cell[a], cc);
             real x_a[3];
             grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h;
+            const real support = SUPPORT_OVER_H * p.h_max;
             /* [0]: the non-gas fluid, [1]: the gas */
             real sum_w[2] = {REAL(0.0), REAL(0.0)}, sum_p[2] = {REAL(0.0), REAL(0.0)};
             real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
@@ -104,7 +135,9 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                     const real r2 = dot3(r_ab, r_ab);
                     if (r2 >= support * support)
                         continue; /* W = 0 */
-                    const real w = smoothing_w(sqrt(r2), p.h);
+                    /* the wall keeps h0 */
+                    const real h_ab = pair_smoothing_length(p.h, particle_smoothing_length(smoothing_length, b, &p));
+                    const real w = smoothing_w(sqrt(r2), h_ab);
                     const int phase = material_is_gas(materials, material[b]);
                     sum_w[phase] += w;
                     sum_p[phase] += pressure[b] * w;
@@ -138,7 +171,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
  * exchange only their departures from it; or rho - rho0 less the
  * hydrostatic density after Fourtakas et al. 2019, which leaves a fluid at
  * rest under gravity untouched):
- *   D_a = delta h c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
+ *   D_a = delta h_a c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
  * the Molteni & Colagrossi (2009) form without Antuono's correction term;
  * it decays a perturbation of q (tested). */
 static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, real r2, real v_b,
@@ -167,10 +200,10 @@ static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
  * the rates for fluid particles. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *density, GLOBAL const real *reference_density,
-                       GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
-                       GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
-                       GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
-                       GLOBAL real *gamma, GLOBAL real *closest)
+                       GLOBAL const real *mass, GLOBAL const real *smoothing_length, GLOBAL const int *kind,
+                       GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                       GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
+                       GLOBAL real *density_rate, GLOBAL real *gamma, GLOBAL real *closest)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -178,7 +211,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         grid_cell_coords(&g, cell[a], cc);
         real x_a[3];
         grid_point(position, a, x_a);
-        const real support = SUPPORT_OVER_H * p.h;
+        const real support = SUPPORT_OVER_H * p.h_max;
+        const real h_a = particle_smoothing_length(smoothing_length, a, &p);
         const int fluid_a = kind[a] == KIND_FLUID;
         const int mat_a = material[a];
         const real rho_a = density[a];
@@ -195,10 +229,11 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                 continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
             const real r = sqrt(r2);
             const real v_b = mass[b] / density[b];
-            shepard += smoothing_w(r, p.h) * v_b;
+            const real h_ab = pair_smoothing_length(h_a, particle_smoothing_length(smoothing_length, b, &p));
+            shepard += smoothing_w(r, h_ab) * v_b;
             if (fluid_a && b != a) {
                 nearest = r < nearest ? r : nearest; /* fmin, without a call to libm in C */
-                const real f = smoothing_grad_factor(r, p.h); /* grad_a W_ab = f r_ab */
+                const real f = smoothing_grad_factor(r, h_ab); /* grad_a W_ab = f r_ab */
                 real u_ab[3];
                 for (int d = 0; d < 3; ++d)
                     u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
@@ -218,7 +253,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
             }
         }
         gamma[a] = shepard;
-        density_rate[a] = fluid_a ? drho + p.delta * p.h *
+        density_rate[a] = fluid_a ? drho + p.delta * h_a *
                                                material_value(materials, mat_a, MATERIAL_SOUND_SPEED) *
                                                diffusion
                                   : REAL(0.0);
@@ -232,7 +267,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
-                         GLOBAL const int *kind, GLOBAL const int *material,
+                         GLOBAL const real *smoothing_length, GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
                          GLOBAL real *acceleration)
@@ -245,16 +280,17 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             grid_cell_coords(&g, cell[a], cc);
             real x_a[3];
             grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h;
-            const fluid_pair_side s_a =
-                fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction, material, materials, &p);
+            const real support = SUPPORT_OVER_H * p.h_max;
+            const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
+                                                           smoothing_length, material, materials, &p);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3], r2;
                 if (b != a && grid_pair_within(&run, position, b, support * support, r_ab, &r2))
                     fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
                                             gas_wall_pressure, mass,
-                                            gamma, liquid_fraction, kind, material, materials, &p, acc);
+                                            gamma, liquid_fraction, smoothing_length, kind, material, materials, &p,
+                                            acc);
             }
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];
@@ -273,7 +309,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
 
 /* Particle shifting (Lind et al. 2012; Skillen et al. 2013): after a step,
  * each fluid particle moves down the gradient of the particle concentration,
- *   delta r_a = -D grad C_a,   D = A h |u_a| dt                (Skillen et al.)
+ *   delta r_a = -D grad C_a,   D = A h_a |u_a| dt              (Skillen et al.)
  *   grad C_a = sum_b V_b (1 + R (W_ab / W(dx))^n) grad_a W_ab  (Lind et al.,
  *              with Monaghan's (2000) anti-clumping term, R = 0.2, n = 4),
  * which evens out the particle distribution: particles crowded on one side
@@ -290,7 +326,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * and solids), added to the positions by the drift kernel. */
 KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real *velocity,
                                   GLOBAL const real *density, GLOBAL const real *mass,
-                                  GLOBAL const real *gamma, GLOBAL const int *kind,
+                                  GLOBAL const real *gamma, GLOBAL const real *smoothing_length, GLOBAL const int *kind,
                                   GLOBAL const int *cell, int n, grid_geometry g,
                                   GLOBAL const int *cell_start, fluid_params p, real dt,
                                   GLOBAL real *shift)
@@ -301,11 +337,11 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
-            const real w_dx = smoothing_w(p.dx, p.h);
             real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
-            const real support = SUPPORT_OVER_H * p.h;
+            const real support = SUPPORT_OVER_H * p.h_max;
+            const real h_a = particle_smoothing_length(smoothing_length, a, &p);
             real x_a[3];
             grid_point(position, a, x_a);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
@@ -314,8 +350,9 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
-                const real fv = smoothing_grad_factor(r, p.h) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
-                const real w = smoothing_w(r, p.h) / w_dx;
+                const real h_ab = pair_smoothing_length(h_a, particle_smoothing_length(smoothing_length, b, &p));
+                const real fv = smoothing_grad_factor(r, h_ab) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
+                const real w = smoothing_w(r, h_ab) / smoothing_w(p.dx, h_ab);
                 const real clumping = REAL(1.0) + REAL(0.2) * (w * w) * (w * w);
                 for (int d = 0; d < 3; ++d) {
                     grad_c[d] += clumping * fv * r_ab[d];
@@ -327,7 +364,7 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             for (int d = 0; d < 3; ++d)
                 u_a[d] = velocity[3 * a + d];
             const real speed = sqrt(dot3(u_a, u_a));
-            const real diffusivity = p.shifting * p.h * speed * dt;
+            const real diffusivity = p.shifting * h_a * speed * dt;
             for (int d = 0; d < 3; ++d)
                 delta_r[d] = -diffusivity * grad_c[d];
             const real colour_norm = sqrt(dot3(colour, colour));
