@@ -131,8 +131,8 @@ int amsph_fluid_check_smoothing_length(amsph_sim *s)
                             "%.6g, %.6g) m has the smoothing length %.4g h0 (its volume %.4g dx^d), above "
                             "fluid.max_smoothing_ratio = %g, for which the neighbour grid is laid out; raise it",
                             s->step, s->time, ((unsigned *)h.data[AMSPH_FIELD_ID])[i], (double)x[0],
-                                 (double)x[1], (double)x[2], largest / s->h, pow(largest / s->h, s->config.dim),
-                                 s->config.fluid.max_smoothing_ratio);
+                            (double)x[1], (double)x[2], largest / s->h, pow(largest / s->h, s->config.dim),
+                            s->config.fluid.max_smoothing_ratio);
     }
     amsph_host_free(&h);
     return status;
@@ -153,7 +153,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY),
-                             field(s, AMSPH_FIELD_MASS), amsph_fluid_smoothing_length(s), field(s, AMSPH_FIELD_KIND),
+                             amsph_fluid_smoothing_length(s),
+                             field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
@@ -179,9 +180,10 @@ int amsph_fluid_forces(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "wall_state", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
-                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_fluid_smoothing_length(s),
-                             amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
-                             amsph_arg_buffer(s->materials), params, field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                             amsph_fluid_smoothing_length(s),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), grid,
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
+                             params, field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
                              field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
@@ -239,7 +241,7 @@ int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
     AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_VELOCITY, &umax));
     AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_ACCELERATION, &amax));
     material_extremes(&s->config, &c0, &nu);
-    /* the smallest smoothing length (Russell Eq. 3.54 shrinks a compressed particle's) */
+    /* the smallest smoothing length (Russell Eq. 3.54 shrinks a compressed particle's) for every limit */
     double h = s->h;
     if (s->fluid.smoothing_length == SMOOTHING_VOLUME)
         AMSPH_CHECK(amsph_reduce_min(s->backend, s->particles.field[AMSPH_FIELD_SMOOTHING_LENGTH], s->particles.n, &h));

@@ -109,10 +109,11 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       GLOBAL const real *reference_density, GLOBAL const real *smoothing_length, int n,
-                       grid_geometry g, GLOBAL const int *cell_start, GLOBAL const real *materials,
-                       fluid_params p, GLOBAL real *density, GLOBAL real *pressure,
-                       GLOBAL real *gas_wall_pressure, GLOBAL real *wall_velocity)
+                       GLOBAL const real *smoothing_length,
+                       GLOBAL const real *reference_density, int n, grid_geometry g,
+                       GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
+                       GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *gas_wall_pressure,
+                       GLOBAL real *wall_velocity)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -200,10 +201,11 @@ static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
  * the rates for fluid particles. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *density, GLOBAL const real *reference_density,
-                       GLOBAL const real *mass, GLOBAL const real *smoothing_length, GLOBAL const int *kind,
-                       GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
-                       GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                       GLOBAL real *density_rate, GLOBAL real *gamma, GLOBAL real *closest)
+                       GLOBAL const real *smoothing_length,
+                       GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
+                       GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
+                       GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
+                       GLOBAL real *gamma, GLOBAL real *closest)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -267,7 +269,8 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
-                         GLOBAL const real *smoothing_length, GLOBAL const int *kind, GLOBAL const int *material,
+                         GLOBAL const real *smoothing_length,
+                         GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
                          GLOBAL real *acceleration)
