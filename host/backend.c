@@ -20,6 +20,7 @@ void amsph_backend_opencl_list(FILE *file);
 #define REDUCE_CHUNKS 1024
 #define REDUCE_SUM 0
 #define REDUCE_MAX 1
+#define REDUCE_MIN 2
 
 int amsph_backend_create(const char *name, int device, amsph_backend **out)
 {
@@ -145,7 +146,7 @@ int amsph_sync(amsph_backend *b) { return b->iface->sync(b); }
 
 static int reduce(amsph_backend *b, amsph_buffer *x, int n, int op, double *out)
 {
-    *out = op == REDUCE_MAX ? -INFINITY : 0.0;
+    *out = op == REDUCE_MAX ? -INFINITY : op == REDUCE_MIN ? INFINITY : 0.0;
     if (n <= 0)
         return 0;
     const int chunk = (n + REDUCE_CHUNKS - 1) / REDUCE_CHUNKS;
@@ -157,7 +158,7 @@ static int reduce(amsph_backend *b, amsph_buffer *x, int n, int op, double *out)
     AMSPH_CHECK(amsph_download(b, b->reduce_partial, 0, (size_t)nchunks * sizeof(amsph_real),
                                partial));
     for (int k = 0; k < nchunks; ++k)
-        *out = op == REDUCE_MAX ? fmax(*out, partial[k]) : *out + partial[k];
+        *out = op == REDUCE_MAX ? fmax(*out, partial[k]) : op == REDUCE_MIN ? fmin(*out, partial[k]) : *out + partial[k];
     return 0;
 }
 
@@ -169,4 +170,9 @@ int amsph_reduce_sum(amsph_backend *b, amsph_buffer *x, int n, double *out)
 int amsph_reduce_max(amsph_backend *b, amsph_buffer *x, int n, double *out)
 {
     return reduce(b, x, n, REDUCE_MAX, out);
+}
+
+int amsph_reduce_min(amsph_backend *b, amsph_buffer *x, int n, double *out)
+{
+    return reduce(b, x, n, REDUCE_MIN, out);
 }

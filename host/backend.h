@@ -77,9 +77,10 @@ int amsph_build(amsph_backend *, const amsph_build_options *);
 int amsph_launch(amsph_backend *, const char *kernel, int items, int nargs, const amsph_arg *args);
 int amsph_sync(amsph_backend *);
 
-/* Sum and maximum of n `real` values of a buffer (host result in double). */
+/* Sum, maximum and minimum of n `real` values of a buffer (host result in double). */
 int amsph_reduce_sum(amsph_backend *, amsph_buffer *, int n, double *out);
 int amsph_reduce_max(amsph_backend *, amsph_buffer *, int n, double *out);
+int amsph_reduce_min(amsph_backend *, amsph_buffer *, int n, double *out);
 
 /* Launch with the arguments written inline: AMSPH_LAUNCH(b, "name", n, arg...). */
 #define AMSPH_LAUNCH(backend, kernel, items, ...)                                                  \

@@ -144,6 +144,8 @@ static const choice integration_choices[] = {{"explicit", AMSPH_THERMAL_EXPLICIT
                                              {NULL, 0, 0}};
 static const choice slip_choices[] = {
     {"no_slip", WALL_NO_SLIP, 0}, {"free_slip", WALL_FREE_SLIP, 0}, {NULL, 0, 0}};
+static const choice smoothing_choices[] = {
+    {"fixed", SMOOTHING_FIXED, 0}, {"volume", SMOOTHING_VOLUME, 0}, {NULL, 0, 0}};
 static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLUMETRIC, 0},
                                             {"surface", AMSPH_ABSORPTION_SURFACE, 0},
                                             {NULL, 0, 0}};
@@ -330,6 +332,15 @@ static const key_spec specs[] = {
      .lo = 0, .hi = 10, .def = 0, .offset = FLUID(shifting),
      .doc = "Particle shifting coefficient A: fluid particles move by -A h |u| dt grad C after each step "
             "(Skillen et al. 2013; Lind et al. 2012, tangential only near free surfaces); 2 is usual; 0: off"},
+    {.section = SEC_FLUID, .key = "smoothing_length", .type = VT_CHOICE, .choices = smoothing_choices,
+     .def = SMOOTHING_FIXED, .offset = FLUID(smoothing_length),
+     .doc = "Smoothing length of the fluid's pair terms: fixed h0 = `h_over_dx` dx, or following each fluid "
+            "particle's volume, h = h0 (V / dx^d)^(1/d) (Russell Eq. 3.54), pairs taking (h_a + h_b) / 2; "
+            "walls and the other modules keep h0"},
+    {.section = SEC_FLUID, .key = "max_smoothing_ratio", .type = VT_NUMBER, .flags = F_ABOVE_LO | F_UP_TO_HI,
+     .lo = 1, .hi = 2, .def = 1.1, .offset = FLUID(max_smoothing_ratio),
+     .rule = "with `smoothing_length: volume`: a particle whose h exceeds it times h0 stops the run",
+     .doc = "Largest h / h0 of `smoothing_length: volume`: the neighbour grid's cells are laid out for it"},
     {.section = SEC_FLUID, .key = "barrier", .type = VT_MAP, .sub = SEC_BARRIER,
      .doc = "Barrier forces between pairs closer than `distance` (Fuchs et al. 2022 Eq. 34); "
             "present: on. In 2D, stiffness and damping are per metre of depth"},
@@ -1333,7 +1344,7 @@ static int unknown_key(parser *p, const scope *sc, const yaml_node_t *key)
     if (hint)
         return fail(p, line_of(key), "unknown key %s in %s; did you mean '%s'?", name.s, sc->label,
                     hint);
-    char allowed[256] = "";
+    char allowed[512] = ""; /* the fluid section's keys take 300 characters */
     size_t used = 0;
     for (size_t i = 0; i < N_SPECS && used < sizeof allowed; i++) {
         if (specs[i].section != sc->section)

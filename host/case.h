@@ -164,6 +164,8 @@ typedef struct {
     double damping_rate;        /* relaxation: u *= exp(-rate dt) each step, 1/s, default 0 */
     double damping_end;         /* ... while t < damping_end, s, default 0 */
     double shifting;            /* particle shifting coefficient A (D = A h |u| dt), default 0: off */
+    int smoothing_length;       /* SMOOTHING_*, default SMOOTHING_FIXED */
+    double max_smoothing_ratio; /* SMOOTHING_VOLUME: the largest h / h0 the grid serves, default 1.1 */
     /* barrier forces of too-close pairs (Fuchs et al. 2022 Eq. 34), on with a
      * `barrier:` section; 2D: per metre of depth */
     double barrier_stiffness;   /* k_b, kg/s^2 (2D: kg/(m s^2)); 0: off */

@@ -63,6 +63,8 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->barrier_stiffness = (amsph_real)f->barrier_stiffness;
     p->barrier_damping = (amsph_real)f->barrier_damping;
     p->barrier_distance = (amsph_real)f->barrier_distance;
+    p->smoothing_length = f->smoothing_length;
+    p->h_max = (amsph_real)(amsph_fluid_max_smoothing_ratio(&s->config) * s->h);
     s->lightest_fluid_mass = lightest_fluid_mass(h);
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
     set_reference_density(&s->config, h);
@@ -75,12 +77,65 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LIQUID_FRACTION));
     for (int i = 0; i < h->n; ++i)
         amsph_host_real(h, AMSPH_FIELD_LIQUID_FRACTION)[i] = 1;
+    if (f->smoothing_length == SMOOTHING_VOLUME) {
+        /* h0: every particle starts with the lattice volume dx^d */
+        AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SMOOTHING_LENGTH));
+        for (int i = 0; i < h->n; ++i)
+            amsph_host_real(h, AMSPH_FIELD_SMOOTHING_LENGTH)[i] = p->h;
+    }
     return 0;
+}
+
+double amsph_fluid_max_smoothing_ratio(const amsph_case *c)
+{
+    return c->fluid.enabled && c->fluid.smoothing_length == SMOOTHING_VOLUME ? c->fluid.max_smoothing_ratio : 1.0;
 }
 
 static amsph_arg field(amsph_sim *s, amsph_field_id f)
 {
     return amsph_arg_buffer(s->particles.field[f]);
+}
+
+amsph_arg amsph_fluid_smoothing_length(amsph_sim *s)
+{
+    return field(s, s->fluid.smoothing_length == SMOOTHING_VOLUME ? AMSPH_FIELD_SMOOTHING_LENGTH : AMSPH_FIELD_DENSITY);
+}
+
+/* h of every particle from its volume after the density changed
+ * (kernels/fluid.cl volume_smoothing_length). */
+static int update_smoothing_length(amsph_sim *s)
+{
+    const int n = s->particles.n;
+    return AMSPH_LAUNCH(s->backend, "volume_smoothing_length", n, field(s, AMSPH_FIELD_MASS),
+                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_KIND), amsph_arg_int(n),
+                        amsph_arg_bytes(&s->fluid, sizeof s->fluid), field(s, AMSPH_FIELD_SMOOTHING_LENGTH));
+}
+
+int amsph_fluid_check_smoothing_length(amsph_sim *s)
+{
+    const int n = s->particles.n;
+    double largest = 0.0;
+    if (s->fluid.smoothing_length != SMOOTHING_VOLUME)
+        return 0;
+    AMSPH_CHECK(amsph_reduce_max(s->backend, s->particles.field[AMSPH_FIELD_SMOOTHING_LENGTH], n, &largest));
+    if (!(largest > s->fluid.h_max))
+        return 0;
+    amsph_host_particles h;
+    int status = amsph_particles_download(&s->particles, &h);
+    int i = 0;
+    while (!status && i < n - 1 && amsph_host_real(&h, AMSPH_FIELD_SMOOTHING_LENGTH)[i] != (amsph_real)largest)
+        ++i;
+    if (!status) {
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
+        status = amsph_fail("guard 'smoothing length' failed: step %lld, t = %.6g s: particle id %u at (%.6g, "
+                            "%.6g, %.6g) m has the smoothing length %.4g h0 (its volume %.4g dx^d), above "
+                            "fluid.max_smoothing_ratio = %g, for which the neighbour grid is laid out; raise it",
+                            s->step, s->time, ((unsigned *)h.data[AMSPH_FIELD_ID])[i], (double)x[0],
+                            (double)x[1], (double)x[2], largest / s->h, pow(largest / s->h, s->config.dim),
+                            s->config.fluid.max_smoothing_ratio);
+    }
+    amsph_host_free(&h);
+    return status;
 }
 
 int amsph_fluid_reference_density(amsph_sim *s)
@@ -98,6 +153,7 @@ int amsph_fluid_density(amsph_sim *s, double dt)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY),
+                             amsph_fluid_smoothing_length(s),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
@@ -105,9 +161,10 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest)));
-    return AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
-                        field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_int(n), amsph_arg_real(dt),
-                        field(s, AMSPH_FIELD_DENSITY));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_int(n), amsph_arg_real(dt),
+                             field(s, AMSPH_FIELD_DENSITY)));
+    return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
 }
 
 int amsph_fluid_forces(amsph_sim *s)
@@ -123,17 +180,17 @@ int amsph_fluid_forces(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "wall_state", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
-                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), field(s, AMSPH_FIELD_SHEPARD),
-                             amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
-                             amsph_arg_buffer(s->materials), params, field(s, AMSPH_FIELD_DENSITY),
-                             field(s, AMSPH_FIELD_PRESSURE),
+                             amsph_fluid_smoothing_length(s), field(s, AMSPH_FIELD_REFERENCE_DENSITY),
+                             field(s, AMSPH_FIELD_SHEPARD), amsph_arg_int(n), grid,
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
                              field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
                         field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
                         field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
-                        field(s, AMSPH_FIELD_LIQUID_FRACTION), field(s, AMSPH_FIELD_KIND),
-                        field(s, AMSPH_FIELD_MATERIAL),
+                        field(s, AMSPH_FIELD_LIQUID_FRACTION), amsph_fluid_smoothing_length(s),
+                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION));
@@ -146,7 +203,8 @@ int amsph_fluid_shift(amsph_sim *s, double dt)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "shifting_displacement", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
-                             field(s, AMSPH_FIELD_KIND), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
+                             amsph_fluid_smoothing_length(s), field(s, AMSPH_FIELD_KIND),
+                             amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              amsph_arg_real(dt), amsph_arg_buffer(s->shift)));
@@ -183,7 +241,10 @@ int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
     AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_VELOCITY, &umax));
     AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_ACCELERATION, &amax));
     material_extremes(&s->config, &c0, &nu);
-    const double h = s->h;
+    /* the smallest smoothing length (Russell Eq. 3.54 shrinks a compressed particle's) for every limit */
+    double h = s->h;
+    if (s->fluid.smoothing_length == SMOOTHING_VOLUME)
+        AMSPH_CHECK(amsph_reduce_min(s->backend, s->particles.field[AMSPH_FIELD_SMOOTHING_LENGTH], s->particles.n, &h));
     lower(dt, limit, s->config.fluid.cfl * h / (c0 + umax), "acoustic");
     if (nu > 0.0)
         lower(dt, limit, 0.125 * h * h / nu, "viscous");

@@ -20,6 +20,16 @@ int amsph_fluid_forces(amsph_sim *s);
 /* Particle shifting at the end of a step of dt (fluid.shifting > 0):
  * kernels/fluid.cl shifting_displacement, added to the positions. */
 int amsph_fluid_shift(amsph_sim *s, double dt);
+/* The buffer of the fluid particles' own smoothing lengths as a kernel
+ * argument (fluid.smoothing_length: volume); otherwise a stand-in the
+ * kernels do not read (kernels/fluid_pair.h particle_smoothing_length). */
+amsph_arg amsph_fluid_smoothing_length(amsph_sim *s);
+/* The largest smoothing length over h0 that the neighbour grid serves:
+ * fluid.max_smoothing_ratio with `smoothing_length: volume`, else 1. */
+double amsph_fluid_max_smoothing_ratio(const amsph_case *c);
+/* Stops the run (bad input, naming the particle) when a fluid particle's
+ * smoothing length exceeds the grid's h_max (`smoothing_length: volume`). */
+int amsph_fluid_check_smoothing_length(amsph_sim *s);
 /* Lowers *dt to the acoustic, viscous and force limits (Fuchs et al. 2022
  * Eq. 42), naming the one that binds in *limit. */
 int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit);

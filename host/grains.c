@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "fluid.h"
 
 #define PI 3.14159265358979323846
 
@@ -149,7 +150,7 @@ int amsph_grains_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
                              field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD), field(s, AMSPH_FIELD_LIQUID_FRACTION),
-                             field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_GRAIN),
+                             amsph_fluid_smoothing_length(s), field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_GRAIN),
                              amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),

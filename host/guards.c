@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "error.h"
+#include "fluid.h"
 
 /* Codes of kernels/guards.cl */
 enum { GUARD_OK, GUARD_DENSITY, GUARD_CLOSE, GUARD_NOT_FINITE };
@@ -72,7 +73,7 @@ int amsph_guards_check(amsph_sim *s)
     double worst = 0.0;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &worst));
     if (worst == GUARD_OK)
-        return 0;
+        return amsph_fluid_check_smoothing_length(s);
     int i = 0;
     AMSPH_CHECK(first_with_code(s, (int)worst, &i));
     return report(s, (int)worst, i);

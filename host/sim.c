@@ -200,8 +200,9 @@ static int allocate_device_state(amsph_sim *s)
     const amsph_case *c = &s->config;
     amsph_backend *b = s->backend;
     const int capacity = s->particles.capacity;
+    /* cells for the largest support of the fluid's pair loops (kernels/fluid.cl) */
     AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic,
-                                s->support, capacity));
+                                amsph_fluid_max_smoothing_ratio(c) * s->support, capacity));
     if (c->surface.enabled)
         AMSPH_CHECK(amsph_surface_check_grid(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));

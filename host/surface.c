@@ -23,7 +23,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     p->max_curvature = (amsph_real)(0.5 / h_st);
     p->min_shepard = (amsph_real)st->min_shepard;
     p->interface_viscosity = (amsph_real)st->interface_viscosity;
-    /* cells are s->support / GRID_CELLS_PER_SUPPORT wide; the surface support needs this many */
+    /* cells are s->support / GRID_CELLS_PER_SUPPORT wide (wider with fluid.smoothing_length: volume,
+     * host/sim.c); the surface support needs at most this many */
     p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support * GRID_CELLS_PER_SUPPORT - 1e-9);
     p->tension = st->tension;
     p->marangoni = st->marangoni;

@@ -1,6 +1,10 @@
 /* Weakly compressible SPH: continuity with delta-SPH and Shepard sums,
  * equation of state, wall states, and the pair forces (pressure, viscosity).
- * Pair loops gather: particle a reads its neighbours b and writes only a. */
+ * Pair loops gather: particle a reads its neighbours b and writes only a.
+ * Every pair term takes W(r_ab, h_ab), h_ab = (h_a + h_b) / 2
+ * (kernels/fluid_pair.h), over the largest support SUPPORT_OVER_H h_max:
+ * h0 for all with `smoothing_length: fixed`; with `volume` each fluid
+ * particle's h follows its volume (volume_smoothing_length). */
 #include "device.h"
 #include "fluid_pair.h"
 #include "fluid_params.h"
@@ -21,6 +25,33 @@ KERNEL void update_reference_density(GLOBAL const int *material, GLOBAL const re
     FOR_EACH_ITEM(a, n)
     {
         reference_density[a] = reference_density_of_temperature(materials, material[a], temperature[a]);
+    }
+}
+
+/* The d-th root of x, d the dimension. */
+static inline real dimension_root(real x)
+{
+#if AMSPH_DIM == 2
+    return sqrt(x);
+#else
+    return cbrt(x);
+#endif
+}
+
+/* Smoothing length that follows the particle volume (Russell 2018 Eq. 3.54),
+ * with SMOOTHING_VOLUME, after the density advanced:
+ *   h_a = h0 (V_a / V0)^(1/d),  V_a = m_a / rho_a,  V0 = dx^d
+ * for fluid particles (V0 the lattice volume every particle starts with: the
+ * scene gives each the mass rho dx^d); walls and solids keep h0. */
+KERNEL void volume_smoothing_length(GLOBAL const real *mass, GLOBAL const real *density, GLOBAL const int *kind,
+                                    int n, fluid_params p, GLOBAL real *smoothing_length)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real v0 = p.dx;
+        for (int d = 1; d < AMSPH_DIM; ++d)
+            v0 *= p.dx;
+        smoothing_length[a] = kind[a] == KIND_FLUID ? p.h * dimension_root(mass[a] / (density[a] * v0)) : p.h;
     }
 }
 
@@ -78,7 +109,8 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
-                       GLOBAL const real *reference_density, GLOBAL const real *gamma, int n, grid_geometry g,
+                       GLOBAL const real *smoothing_length, GLOBAL const real *reference_density,
+                       GLOBAL const real *gamma, int n, grid_geometry g,
                        GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
                        GLOBAL real *density, GLOBAL real *pressure, GLOBAL real *gas_wall_pressure,
                        GLOBAL real *wall_velocity)
@@ -90,7 +122,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             grid_cell_coords(&g, cell[a], cc);
             real x_a[3];
             grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h;
+            const real support = SUPPORT_OVER_H * p.h_max;
             /* [0]: the non-gas fluid, [1]: the gas */
             real sum_w[2] = {REAL(0.0), REAL(0.0)}, sum_p[2] = {REAL(0.0), REAL(0.0)};
             real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
@@ -108,7 +140,10 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                         const real r2 = dot3(r_ab, r_ab);
                         if (r2 >= support * support)
                             continue; /* W = 0 */
-                        const real w = smoothing_w_at(&scale, sqrt(r2));
+                        /* the wall keeps h0 */
+                        const smoothing_scale scale_ab =
+                            pair_smoothing_scale(&scale, p.h, particle_smoothing_length(smoothing_length, b, &p), &p);
+                        const real w = smoothing_w_at(&scale_ab, sqrt(r2));
                         const int phase = material_is_gas(materials, material[b]);
                         sum_w[phase] += w;
                         sum_p[phase] += pressure[b] * w;
@@ -143,7 +178,7 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
  * exchange only their departures from it; or rho - rho0 less the
  * hydrostatic density after Fourtakas et al. 2019, which leaves a fluid at
  * rest under gravity untouched):
- *   D_a = delta h c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
+ *   D_a = delta h_a c0 sum_b 2 (q_a - q_b) (r_ab . grad_a W_ab) / (r_ab^2 + eta^2) V_b,
  * the Molteni & Colagrossi (2009) form without Antuono's correction term;
  * it decays a perturbation of q (tested). */
 static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, real r2, real v_b,
@@ -170,7 +205,8 @@ typedef struct {
 
 static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBAL const real *position,
                                        GLOBAL const real *velocity, GLOBAL const real *density,
-                                       GLOBAL const real *reference_density, GLOBAL const real *mass,
+                                       GLOBAL const real *reference_density, GLOBAL const real *smoothing_length,
+                                       GLOBAL const real *mass,
                                        GLOBAL const int *kind, GLOBAL const int *material,
                                        GLOBAL const int *cell, const grid_geometry *g,
                                        GLOBAL const int *cell_start, GLOBAL const real *materials,
@@ -181,7 +217,8 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
     grid_cell_coords(g, cell[a], cc);
     real x_a[3];
     grid_point(position, a, x_a);
-    const real support = SUPPORT_OVER_H * p->h;
+    const real support = SUPPORT_OVER_H * p->h_max;
+    const real h_a = particle_smoothing_length(smoothing_length, a, p);
     const int fluid_a = kind[a] == KIND_FLUID;
     const int mat_a = material[a];
     const real rho_a = density[a];
@@ -197,11 +234,13 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
             continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
         const real r = sqrt(r2);
         const real v_b = mass[b] / density[b];
-        sums.shepard += smoothing_w_at(&scale, r) * v_b;
+        const smoothing_scale scale_ab =
+            pair_smoothing_scale(&scale, h_a, particle_smoothing_length(smoothing_length, b, p), p);
+        sums.shepard += smoothing_w_at(&scale_ab, r) * v_b;
         sums.fluid_near |= b != a && kind[b] == KIND_FLUID;
         if (fluid_a && b != a) {
             sums.nearest = r < sums.nearest ? r : sums.nearest; /* fmin, without a call to libm in C */
-            const real f = smoothing_grad_factor_at(&scale, r); /* grad_a W_ab = f r_ab */
+            const real f = smoothing_grad_factor_at(&scale_ab, r); /* grad_a W_ab = f r_ab */
             real u_ab[3];
             for (int d = 0; d < 3; ++d)
                 u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
@@ -238,6 +277,7 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
  * a pass over the non-wall cells around them (kernels/grid_geometry.h). */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *density, GLOBAL const real *reference_density,
+                       GLOBAL const real *smoothing_length,
                        GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
                        GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                        GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
@@ -248,13 +288,13 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         const int fluid_a = kind[a] == KIND_FLUID;
         continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(1e30), 0};
         add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
-                            density, reference_density, mass, kind, material, cell, &g, cell_start, materials, &p,
-                            &sums);
+                            density, reference_density, smoothing_length, mass, kind, material, cell, &g, cell_start,
+                            materials, &p, &sums);
         if (!fluid_a && sums.fluid_near)
             add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
-                                mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
+                                smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
-        density_rate[a] = fluid_a ? sums.drho + p.delta * p.h *
+        density_rate[a] = fluid_a ? sums.drho + p.delta * particle_smoothing_length(smoothing_length, a, &p) *
                                                     material_value(materials, material[a], MATERIAL_SOUND_SPEED) *
                                                     sums.diffusion
                                   : REAL(0.0);
@@ -268,6 +308,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
+                         GLOBAL const real *smoothing_length,
                          GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
@@ -281,16 +322,17 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             grid_cell_coords(&g, cell[a], cc);
             real x_a[3];
             grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h;
-            const fluid_pair_side s_a =
-                fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction, material, materials, &p);
+            const real support = SUPPORT_OVER_H * p.h_max;
+            const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
+                                                           smoothing_length, material, materials, &p);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3], r2;
                 if (b != a && grid_pair_within(&run, position, b, support * support, r_ab, &r2))
                     fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
                                             gas_wall_pressure, mass,
-                                            gamma, liquid_fraction, kind, material, materials, &p, acc);
+                                            gamma, liquid_fraction, smoothing_length, kind, material, materials, &p,
+                                            acc);
             }
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];
@@ -309,7 +351,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
 
 /* Particle shifting (Lind et al. 2012; Skillen et al. 2013): after a step,
  * each fluid particle moves down the gradient of the particle concentration,
- *   delta r_a = -D grad C_a,   D = A h |u_a| dt                (Skillen et al.)
+ *   delta r_a = -D grad C_a,   D = A h_a |u_a| dt              (Skillen et al.)
  *   grad C_a = sum_b V_b (1 + R (W_ab / W(dx))^n) grad_a W_ab  (Lind et al.,
  *              with Monaghan's (2000) anti-clumping term, R = 0.2, n = 4),
  * which evens out the particle distribution: particles crowded on one side
@@ -326,7 +368,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * and solids), added to the positions by the drift kernel. */
 KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real *velocity,
                                   GLOBAL const real *density, GLOBAL const real *mass,
-                                  GLOBAL const real *gamma, GLOBAL const int *kind,
+                                  GLOBAL const real *gamma, GLOBAL const real *smoothing_length, GLOBAL const int *kind,
                                   GLOBAL const int *cell, int n, grid_geometry g,
                                   GLOBAL const int *cell_start, fluid_params p, real dt,
                                   GLOBAL real *shift)
@@ -338,11 +380,11 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
             const smoothing_scale scale = smoothing_scale_of(p.h);
-            const real w_dx = smoothing_w_at(&scale, p.dx);
             real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
-            const real support = SUPPORT_OVER_H * p.h;
+            const real support = SUPPORT_OVER_H * p.h_max;
+            const real h_a = particle_smoothing_length(smoothing_length, a, &p);
             real x_a[3];
             grid_point(position, a, x_a);
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
@@ -351,8 +393,10 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
-                const real fv = smoothing_grad_factor_at(&scale, r) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
-                const real w = smoothing_w_at(&scale, r) / w_dx;
+                const smoothing_scale scale_ab =
+                    pair_smoothing_scale(&scale, h_a, particle_smoothing_length(smoothing_length, b, &p), &p);
+                const real fv = smoothing_grad_factor_at(&scale_ab, r) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
+                const real w = smoothing_w_at(&scale_ab, r) / smoothing_w_at(&scale_ab, p.dx);
                 const real clumping = REAL(1.0) + REAL(0.2) * (w * w) * (w * w);
                 for (int d = 0; d < 3; ++d) {
                     grad_c[d] += clumping * fv * r_ab[d];
@@ -364,7 +408,7 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             for (int d = 0; d < 3; ++d)
                 u_a[d] = velocity[3 * a + d];
             const real speed = sqrt(dot3(u_a, u_a));
-            const real diffusivity = p.shifting * p.h * speed * dt;
+            const real diffusivity = p.shifting * h_a * speed * dt;
             for (int d = 0; d < 3; ++d)
                 delta_r[d] = -diffusivity * grad_c[d];
             const real colour_norm = sqrt(dot3(colour, colour));

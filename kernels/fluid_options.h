@@ -17,4 +17,7 @@
 #define WALL_NO_SLIP 0
 #define WALL_FREE_SLIP 1
 
+#define SMOOTHING_FIXED 0  /* h = h_over_dx dx for every particle */
+#define SMOOTHING_VOLUME 1 /* fluid particles: h_a = h0 (V_a / V0)^(1/d) (Russell 2018 Eq. 3.54) */
+
 #endif

@@ -13,6 +13,32 @@
 #include "smoothing.h"
 #include "vec3.h"
 
+/* The smoothing length of particle a: with SMOOTHING_VOLUME its own, from
+ * its volume (kernels/fluid.cl volume_smoothing_length; walls and solids
+ * h0), else h0 (the buffer, then a stand-in, is not read). */
+static inline real particle_smoothing_length(GLOBAL const real *smoothing_length, int a, const fluid_params *p)
+{
+    return p->smoothing_length == SMOOTHING_VOLUME ? smoothing_length[a] : p->h;
+}
+
+/* The smoothing length of a pair, the mean h_ab = (h_a + h_b) / 2 (Benz
+ * 1990; Monaghan 2005, Rep. Prog. Phys. 68, 1703, on a variable h): one
+ * kernel W(r_ab, h_ab) for both particles, so that grad_a W_ab = -grad_b W_ba
+ * and every pair force stays equal and opposite (momentum is conserved;
+ * tested); h0 exactly where both have h0. */
+static inline real pair_smoothing_length(real h_a, real h_b)
+{
+    return REAL(0.5) * (h_a + h_b);
+}
+
+/* The kernel's scale at the pair's h_ab: the one at h0 (taken once per
+ * particle) with a fixed h, else one division per pair. */
+static inline smoothing_scale pair_smoothing_scale(const smoothing_scale *at_h0, real h_a, real h_b,
+                                                   const fluid_params *p)
+{
+    return p->smoothing_length == SMOOTHING_VOLUME ? smoothing_scale_of(pair_smoothing_length(h_a, h_b)) : *at_h0;
+}
+
 /* The volume weight w_ab of one pair in the pressure and laminar viscous
  * forces, as a numerator and a denominator (kept apart so that the
  * single-phase forms round as they always did):
@@ -86,13 +112,13 @@ static inline real barrier_factor(real r, real u_dot_r, real m_a, const fluid_pa
 }
 
 /* Monaghan (1992) artificial viscosity, for approaching pairs:
- *   Pi_ab = -alpha c h (u_ab . r_ab) / (rho_mean (r_ab^2 + eta^2)),  a_a -= m_b Pi_ab grad_a W_ab */
-static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real rho_mean,
+ *   Pi_ab = -alpha c h_ab (u_ab . r_ab) / (rho_mean (r_ab^2 + eta^2)),  a_a -= m_b Pi_ab grad_a W_ab */
+static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real rho_mean, real h_ab,
                                         const fluid_params *p)
 {
     if (u_dot_r >= REAL(0.0))
         return REAL(0.0);
-    return -p->artificial_alpha * c_mean * p->h * u_dot_r / (rho_mean * (r2 + p->eta2));
+    return -p->artificial_alpha * c_mean * h_ab * u_dot_r / (rho_mean * (r2 + p->eta2));
 }
 
 /* Monaghan (2000) artificial pressure against the tensile instability.
@@ -101,19 +127,19 @@ static inline real artificial_viscosity(real u_dot_r, real r2, real c_mean, real
  * up: in the 2D dam break, thin films along the walls pair up to 0.3 dx at
  * negative pressures of a few hundred Pa. A short-range repulsion for the
  * tensile part of the pair's pressures,
- *   a_a -= m_b R (W_ab / W(dx))^4 grad_a W_ab,
+ *   a_a -= m_b R (W_ab / W(dx))^4 grad_a W_ab   (both W at the pair's h_ab),
  *   R = eps (max(p_bg - p_a, 0) / rho_a^2 + max(p_bg - p_b, 0) / rho_b^2),
  * returned as the factor of r_ab. Between fluid particles only (against a
  * wall it pushes a film under tension off the wall, lowering its density).
  * Keep eps small: at 0.15 and above the dam break's film along the left wall
  * runs away in tension (density guard); 0.05 to 0.1 runs. */
 static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b, real m_b, real r,
-                                      real f, const fluid_params *p)
+                                      real f, real h_ab, const fluid_params *p)
 {
     const real tension_a = fmax(p->background_pressure - p_a, REAL(0.0));
     const real tension_b = fmax(p->background_pressure - p_b, REAL(0.0));
     const real big_r = p->tensile_correction * (tension_a / (rho_a * rho_a) + tension_b / (rho_b * rho_b));
-    const real fw = smoothing_w(r, p->h) / smoothing_w(p->dx, p->h);
+    const real fw = smoothing_w(r, h_ab) / smoothing_w(p->dx, h_ab);
     const real fw2 = fw * fw;
     return -m_b * big_r * fw2 * fw2 * f;
 }
@@ -121,16 +147,17 @@ static inline real tensile_correction(real p_a, real p_b, real rho_a, real rho_b
 /* What the pair force needs of particle a, the fluid particle it acts on. */
 typedef struct {
     real m, rho, p, mu, c, gamma;
+    real h; /* particle_smoothing_length */
     real u[3];
-    smoothing_scale scale; /* of W at the fluid's h */
+    smoothing_scale scale; /* of W at h0 */
     int gas; /* of a gas material: walls show it their gas_wall_pressure */
 } fluid_pair_side;
 
 static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *velocity, GLOBAL const real *mass,
                                                  GLOBAL const real *density, GLOBAL const real *pressure,
                                                  GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
-                                                 GLOBAL const int *material, GLOBAL const real *materials,
-                                                 const fluid_params *p)
+                                                 GLOBAL const real *smoothing_length, GLOBAL const int *material,
+                                                 GLOBAL const real *materials, const fluid_params *p)
 {
     fluid_pair_side s;
     s.m = mass[a];
@@ -140,6 +167,7 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
     s.c = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
     s.gamma = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
     s.gas = material_is_gas(materials, material[a]);
+    s.h = particle_smoothing_length(smoothing_length, a, p);
     s.scale = smoothing_scale_of(p->h);
     for (int d = 0; d < 3; ++d)
         s.u[d] = velocity[3 * a + d];
@@ -147,7 +175,8 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
 }
 
 /* Acceleration of fluid particle a (its side s_a) by neighbour b at r_ab =
- * r_a - r_b, 0 < |r_ab| < support, added to acc: pressure gradient +
+ * r_a - r_b, 0 < |r_ab| below the largest support SUPPORT_OVER_H h_max, added to acc
+ * (0 beyond the pair's support SUPPORT_OVER_H h_ab, but for the barrier): pressure gradient +
  * viscosity + barrier. Pressure gradient a_a = -sum_b w_ab P_ab grad_a W_ab
  * (pair_weight_of, pair_pressure_sum):
  *   renormalised: a_a = -sum_b m_b / (rho_a rho_b) (p_b / Gamma_a + p_a / Gamma_b) grad_a W_ab
@@ -167,11 +196,14 @@ PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, cons
                                            GLOBAL const real *density, GLOBAL const real *pressure,
                                            GLOBAL const real *gas_wall_pressure,
                                            GLOBAL const real *mass, GLOBAL const real *gamma,
-                                           GLOBAL const real *liquid_fraction, GLOBAL const int *kind,
-                                           GLOBAL const int *material, GLOBAL const real *materials,
-                                           const fluid_params *p, real acc[3])
+                                           GLOBAL const real *liquid_fraction, GLOBAL const real *smoothing_length,
+                                           GLOBAL const int *kind, GLOBAL const int *material,
+                                           GLOBAL const real *materials, const fluid_params *p, real acc[3])
 {
-    const real f = smoothing_grad_factor_at(&s_a->scale, sqrt(r2)); /* grad_a W_ab = f r_ab */
+    const real h_b = particle_smoothing_length(smoothing_length, b, p);
+    const real h_ab = pair_smoothing_length(s_a->h, h_b);
+    const smoothing_scale scale_ab = pair_smoothing_scale(&s_a->scale, s_a->h, h_b, p);
+    const real f = smoothing_grad_factor_at(&scale_ab, sqrt(r2)); /* grad_a W_ab = f r_ab */
     const int fluid_b = kind[b] == KIND_FLUID;
     const int mat_b = material[b];
     const real rho_b = density[b], m_b = mass[b];
@@ -183,7 +215,7 @@ PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, cons
                                            s_a->gamma, gamma_b) *
                          f;
     if (fluid_b && p->tensile_correction > REAL(0.0))
-        pressure_term += tensile_correction(s_a->p, pressure_b, s_a->rho, rho_b, m_b, sqrt(r2), f, p);
+        pressure_term += tensile_correction(s_a->p, pressure_b, s_a->rho, rho_b, m_b, sqrt(r2), f, h_ab, p);
     real u_visc[3];
     for (int d = 0; d < 3; ++d)
         u_visc[d] = s_a->u[d] - (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);
@@ -197,7 +229,7 @@ PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, cons
             const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
             visc_radial = -m_b * f *
                           artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (s_a->c + c_b),
-                                               REAL(0.5) * (s_a->rho + rho_b), p);
+                                               REAL(0.5) * (s_a->rho + rho_b), h_ab, p);
         }
     }
     real barrier = REAL(0.0); /* multiplies r_ab */

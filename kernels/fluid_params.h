@@ -10,8 +10,11 @@
 #include "fluid_options.h"
 
 typedef struct {
-    AMSPH_SHARED_REAL h;                   /* smoothing length, m */
-    AMSPH_SHARED_REAL eta2;                /* 0.01 h^2, keeps 1/r^2 finite, m^2 */
+    AMSPH_SHARED_REAL h;                   /* smoothing length h0 (walls, and every particle with SMOOTHING_FIXED), m */
+    AMSPH_SHARED_REAL h_max;               /* largest smoothing length a pair loop reaches: h, or with
+                                              SMOOTHING_VOLUME max_smoothing_ratio h, m */
+    int smoothing_length;                  /* SMOOTHING_* */
+    AMSPH_SHARED_REAL eta2;                /* 0.01 h0^2 (with SMOOTHING_VOLUME too), keeps 1/r^2 finite, m^2 */
     AMSPH_SHARED_REAL delta;               /* delta-SPH coefficient (typically 0.1) */
     AMSPH_SHARED_REAL background_pressure; /* added to every fluid pressure, Pa */
     AMSPH_SHARED_REAL artificial_alpha;    /* Monaghan's alpha */

@@ -242,8 +242,8 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
                                   GLOBAL const real *wall_velocity, GLOBAL const real *density,
                                   GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure,
                                   GLOBAL const real *mass, GLOBAL const real *gamma,
-                                  GLOBAL const real *liquid_fraction, GLOBAL const int *kind,
-                                  GLOBAL const int *material, GLOBAL const int *grain,
+                                  GLOBAL const real *liquid_fraction, GLOBAL const real *smoothing_length,
+                                  GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *grain,
                                   GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                                   GLOBAL const real *materials, fluid_params fp, grain_params p,
                                   GLOBAL real *acceleration)
@@ -255,7 +255,7 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
             grid_cell_coords(&g, cell[r], cc);
             real x_r[3];
             grid_point(position, r, x_r);
-            const real support = SUPPORT_OVER_H * fp.h;
+            const real support = SUPPORT_OVER_H * fp.h_max;
             const real reach = fmax(support, p.distance);
             real f[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_r, cell_start, reach)
@@ -266,11 +266,13 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
                 if (kind[b] == KIND_FLUID) {
                     if (r2 < support * support) {
                         const fluid_pair_side s_b = fluid_pair_side_of(b, velocity, mass, density, pressure, gamma,
-                                                                       liquid_fraction, material, materials, &fp);
+                                                                       liquid_fraction, smoothing_length, material,
+                                                                       materials, &fp);
                         real r_br[3] = {-r_rb[0], -r_rb[1], -r_rb[2]};
                         real a_br[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
                         fluid_pair_acceleration(&s_b, r, r_br, r2, velocity, wall_velocity, density, pressure,
-                                                gas_wall_pressure, mass, gamma, liquid_fraction, kind, material, materials, &fp, a_br);
+                                                gas_wall_pressure, mass, gamma, liquid_fraction, smoothing_length, kind,
+                                                material, materials, &fp, a_br);
                         for (int d = 0; d < 3; ++d)
                             f[d] -= mass[b] * a_br[d];
                     }

@@ -5,6 +5,7 @@
 
 #define REDUCE_SUM 0
 #define REDUCE_MAX 1
+#define REDUCE_MIN 2
 
 KERNEL void reduce_chunks(GLOBAL const real *x, int n, int chunk, int nchunks, int op,
                           GLOBAL real *partial)
@@ -13,11 +14,13 @@ KERNEL void reduce_chunks(GLOBAL const real *x, int n, int chunk, int nchunks, i
     {
         const int begin = k * chunk;
         const int end = begin + chunk < n ? begin + chunk : n;
-        real acc = op == REDUCE_MAX ? -INFINITY : REAL(0.0);
+        real acc = op == REDUCE_MAX ? -INFINITY : op == REDUCE_MIN ? INFINITY : REAL(0.0);
         real compensation = REAL(0.0); /* Kahan summation */
         for (int j = begin; j < end; ++j) {
             if (op == REDUCE_MAX) {
                 acc = fmax(acc, x[j]);
+            } else if (op == REDUCE_MIN) {
+                acc = fmin(acc, x[j]);
             } else {
                 const real y = x[j] - compensation;
                 const real t = acc + y;

@@ -195,7 +195,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, barrier)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, smoothing_length, max_smoothing_ratio, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -203,6 +203,10 @@ static const bad_case bad_cases[] = {
     {"fluid shifting negative", BASE2 "fluid: {shifting: -1}\n",
      NAME ":17: 'fluid.shifting' must be in [0, 10], got -1"},
     {"fluid not a map", BASE2 "fluid: [1]\n", NAME ":17: 'fluid' must be a map, got a list"},
+    {"smoothing length unknown form", BASE2 "fluid: {smoothing_length: adaptive}\n",
+     NAME ":17: 'fluid.smoothing_length' must be one of fixed, volume; got 'adaptive'"},
+    {"smoothing ratio not above 1", BASE2 "fluid: {smoothing_length: volume, max_smoothing_ratio: 1}\n",
+     NAME ":17: 'fluid.max_smoothing_ratio' must be in (1, 2], got 1"},
     {"pressure gradient unknown form", BASE2 "fluid: {pressure_gradient: adami}\n",
      NAME ":17: 'fluid.pressure_gradient' must be one of renormalised, symmetric, multiphase; got 'adami'"},
     /* barrier forces (Fuchs et al. 2022 Eq. 34) */
@@ -880,11 +884,14 @@ static void check_presets2d(const amsph_case *c)
 }
 
 /* A density table and a ramp of the temperature. */
-static const char isothermal2d[] = HEAD2 "materials:\n  - name: water\n    density: [[250, 1050], [350, 950]]\n" GEO_BOX
-    "temperature_history: {form: ramp, reference: 300, amplitude: -20, duration: 2}\n";
+static const char isothermal2d[] = HEAD2 "materials:\n  - name: water\n    density: [[250, 1050], [350, 950]]\n    sound_speed: 10\n" GEO_BOX
+    "temperature_history: {form: ramp, reference: 300, amplitude: -20, duration: 2}\n"
+    "fluid: {smoothing_length: volume, max_smoothing_ratio: 1.25}\n";
 
 static void check_isothermal2d(const amsph_case *c)
 {
+    expect(c->fluid.smoothing_length == SMOOTHING_VOLUME && near(c->fluid.max_smoothing_ratio, 1.25),
+           "smoothing length following the volume");
     const amsph_property *rho0 = &c->materials[0].density;
     expect(rho0->n == 2 && near(rho0->T[0], 250) && near(rho0->v[0], 1050) && near(rho0->T[1], 350) &&
                near(rho0->v[1], 950),
@@ -912,6 +919,7 @@ static void check_gas2d(const amsph_case *c)
 {
     const amsph_fluid_settings *f = &c->fluid;
     expect(f->pressure_gradient == PRESSURE_MULTIPHASE, "pressure_gradient");
+    expect(f->smoothing_length == SMOOTHING_FIXED && near(f->max_smoothing_ratio, 1.1), "smoothing length default");
     expect(near(f->barrier_stiffness, 2) && near(f->barrier_damping, 0.5) && near(f->barrier_distance, 0.005),
            "barrier");
     expect(c->materials[0].phase == AMSPH_MATERIAL_LIQUID && c->materials[1].phase == AMSPH_MATERIAL_GAS, "phase");

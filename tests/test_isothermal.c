@@ -12,12 +12,18 @@
  *     rho0 under gravity; the Voronoi volumes of both against m / rho0(T);
  *   - I4, sinking fluid: a heavy fluid sinks into a light one; the
  *     particle-scale pressure noise with the delta-SPH of rho - rho0 and
- *     without it.
+ *     without it;
+ *   - the smoothing length that follows the particle volume (Russell Eq.
+ *     3.54, fluid.smoothing_length: volume): a droplet whose rho0 falls 10%
+ *     ends with h = h0 (V / V0)^(1/2), and the run stops naming a particle
+ *     whose h outgrows the grid; pair forces with unequal h conserve
+ *     momentum; both backends agree.
  * The ctest runs the shipped cases at a coarser spacing and a shorter end
  * time on the OpenMP backend (tests/test_backends.c compares the backends).
  *
- * `test_isothermal sweep CASE DX...` (CASE: cycle, cycle_3d, column,
- * sinking) runs a whole shipped case at each spacing and prints a Markdown
+ * `test_isothermal sweep CASE DX...` (CASE: cycle, cycle_volume_h,
+ * cycle_3d, column, sinking; cycle_volume_h is cycle with
+ * fluid.smoothing_length: volume) runs a whole shipped case at each spacing and prints a Markdown
  * row per run for BENCHMARKS.md: measurements, no assertions. */
 #include <math.h>
 #include <stdio.h>
@@ -398,13 +404,15 @@ typedef struct {
     const char *file;            /* in cases/validation/ */
     measure measure;
     const char *what[MAX_ERRORS]; /* the errors, for the sweep's table; NULL: none */
+    int smoothing_length;        /* fluid.smoothing_length; -1: the file's */
 } case_spec;
 
 static const case_spec cases[] = {
-    {"cycle", "expansion_cycle_2d.yaml", measure_cycle, {"interior", "0.8-0.9 R"}},
-    {"cycle_3d", "expansion_cycle_3d.yaml", measure_cycle, {"interior", "0.8-0.9 R"}},
-    {"column", "expansion_column_2d.yaml", measure_column, {"lower fluid", "upper fluid"}},
-    {"sinking", "sinking_2d.yaml", measure_sinking, {"pressure noise", NULL}},
+    {"cycle", "expansion_cycle_2d.yaml", measure_cycle, {"interior", "0.8-0.9 R"}, -1},
+    {"cycle_3d", "expansion_cycle_3d.yaml", measure_cycle, {"interior", "0.8-0.9 R"}, -1},
+    {"column", "expansion_column_2d.yaml", measure_column, {"lower fluid", "upper fluid"}, -1},
+    {"sinking", "sinking_2d.yaml", measure_sinking, {"pressure noise", NULL}, -1},
+    {"cycle_volume_h", "expansion_cycle_2d.yaml", measure_cycle, {"interior", "0.8-0.9 R"}, SMOOTHING_VOLUME},
 };
 #define N_CASES (int)(sizeof cases / sizeof cases[0])
 
@@ -416,6 +424,8 @@ static int run_case(int k, double dx, double end_time, int diffusion, errors *e,
     AMSPH_CHECK(load_case(cases[k].file, dx, end_time, &c));
     if (diffusion >= 0)
         c.fluid.density_diffusion = diffusion;
+    if (cases[k].smoothing_length >= 0)
+        c.fluid.smoothing_length = cases[k].smoothing_length;
     memset(e, 0, sizeof *e);
     return run_measured(&c, cases[k].measure, e, record);
 }
@@ -477,6 +487,267 @@ static void test_sinking(void)
           with.worst[0], without.worst[0]);
 }
 
+/* ---- the smoothing length that follows the volume (Russell Eq. 3.54) ---- */
+
+/* A droplet of radius 0.5 m (314 particles) whose rho0 falls 10% over the
+ * first 0.5 s (a linear rho0(T) and a temperature ramp), then stays. */
+static const char *expanding_case =
+    "dimension: 2\n"
+    "domain: {min: [-1, -1], max: [1, 1]}\n"
+    "dx: 0.05\n"
+    "kernel: quintic\n"
+    "h_over_dx: 1.2\n"
+    "end_time: 1.5\n"
+    "output_interval: 0.5\n"
+    "temperature_history: {form: ramp, reference: 300, amplitude: 100, duration: 0.5}\n"
+    "fluid: {smoothing_length: volume, max_smoothing_ratio: %g, viscosity: artificial, artificial_alpha: 0.1}\n"
+    "materials:\n"
+    "  - {name: liquid, density: [[300, 1000], [400, 900]], sound_speed: 50}\n"
+    "geometry:\n"
+    "  - {shape: circle, kind: fluid, material: liquid, center: [0, 0], radius: 0.5}\n";
+
+static int parse_text(const char *text, amsph_case *c)
+{
+    char err[512];
+    return amsph_case_parse(text, strlen(text), "smoothing.yaml", c, err, sizeof err) ? amsph_fail("%s", err) : 0;
+}
+
+/* The droplet run to its end on backend b with the grid laid out for
+ * max_ratio h0; its particles at the end into h (freed by the caller). */
+static int run_expanding(amsph_backend *b, double max_ratio, amsph_host_particles *h, int *guard_failed)
+{
+    char text[2048];
+    snprintf(text, sizeof text, expanding_case, max_ratio);
+    amsph_case c;
+    AMSPH_CHECK(parse_text(text, &c));
+    amsph_sim s;
+    int status = amsph_sim_create(&c, b, &s);
+    if (!status)
+        status = amsph_sim_advance(&s, c.end_time, NULL, NULL);
+    *guard_failed = s.guard_failed;
+    if (!status)
+        status = amsph_particles_download(&s.particles, h);
+    amsph_sim_free(&s);
+    return status;
+}
+
+/* Mean h / h0 and Voronoi volume / dx^2 of the particles within R/2 of
+ * the centre, R from the expected volume (droplet_shape). */
+static int interior_means(const amsph_host_particles *h, double h0, double dx, double *h_ratio, double *v_ratio)
+{
+    double shape[4], *volume = malloc((size_t)h->n * sizeof *volume);
+    droplet_shape(h, 2, shape);
+    if (!volume || voronoi_volumes(amsph_host_real(h, AMSPH_FIELD_POSITION), h->n, 2, VORONOI_REACH * dx, volume)) {
+        free(volume);
+        return amsph_fail("out of memory for the Voronoi cells");
+    }
+    double sum_h = 0.0, sum_v = 0.0, count = 0.0;
+    for (int i = 0; i < h->n; ++i)
+        if (droplet_region(NULL, h, i, shape) == 0 && volume[i] > 0.0) {
+            sum_h += amsph_host_real(h, AMSPH_FIELD_SMOOTHING_LENGTH)[i] / h0;
+            sum_v += volume[i] / (dx * dx);
+            count += 1.0;
+        }
+    free(volume);
+    *h_ratio = sum_h / count;
+    *v_ratio = sum_v / count;
+    return count > 0.0 ? 0 : amsph_fail("no interior particles");
+}
+
+/* The droplet's rho0 falls 10%, so its particles' volumes grow by 1/0.9
+ * and, after Eq. 3.54, their h by sqrt(1/0.9) = 1.0541 in 2D: the interior's
+ * mean h within 0.2% of that (the volumes follow m / rho0 to about 0.15%,
+ * BENCHMARKS.md, h to half of it) and of h0 sqrt(V / dx^2) of its measured
+ * Voronoi cells; both backends within 1e-4 of each other. With the grid
+ * laid out for 1.03 h0 the run stops on the smoothing-length guard, which
+ * names the particle. */
+static void test_volume_smoothing(void)
+{
+    const double h0 = 1.2 * 0.05, expected = sqrt(1.0 / 0.9);
+    double backend_ratio[TESTING_BACKENDS] = {0.0, 0.0};
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        if (!b)
+            continue;
+        amsph_host_particles h = {0};
+        int stopped = 0;
+        CHECK_OK(run_expanding(b, 1.1, &h, &stopped));
+        amsph_backend_destroy(b);
+        double h_ratio = 0.0, v_ratio = 0.0;
+        CHECK_OK(interior_means(&h, h0, 0.05, &h_ratio, &v_ratio));
+        fprintf(stderr, "backend %d: interior h / h0 %.5f (sqrt(1/0.9) = %.5f), Voronoi V / dx^2 %.5f\n", k,
+                h_ratio, expected, v_ratio);
+        CHECK(fabs(h_ratio / expected - 1.0) < 0.002, "backend %d: interior h / h0 = %.5f, expected %.5f", k, h_ratio,
+              expected);
+        CHECK(fabs(h_ratio / sqrt(v_ratio) - 1.0) < 0.002, "backend %d: h / h0 = %.5f, sqrt(V / V0) = %.5f", k,
+              h_ratio, sqrt(v_ratio));
+        backend_ratio[k] = h_ratio;
+        amsph_host_free(&h);
+    }
+    if (backend_ratio[1] > 0.0)
+        CHECK(fabs(backend_ratio[1] / backend_ratio[0] - 1.0) < 1e-4, "backends differ: h / h0 %.6f and %.6f",
+              backend_ratio[0], backend_ratio[1]);
+    amsph_host_particles h = {0};
+    int stopped = 0;
+    amsph_backend *b = testing_backend(0);
+    CHECK(run_expanding(b, 1.03, &h, &stopped) != 0 && stopped, "h outgrew 1.03 h0 and the run went on");
+    amsph_backend_destroy(b);
+    CHECK(strstr(amsph_last_error(), "guard 'smoothing length' failed") &&
+              strstr(amsph_last_error(), "particle id") && strstr(amsph_last_error(), "max_smoothing_ratio = 1.03"),
+          "the guard's message: %s", amsph_last_error());
+    amsph_host_free(&h);
+}
+
+/* An isolated cloud of fluid particles, 12 x 12 in 2D, 6 x 6 x 6 in 3D,
+ * positions jittered by up to 0.15 dx, densities 0.9 to 1.1 rho0 (so h
+ * spreads over +-5% in 2D, +-3.4% in 3D), random velocities: one pass of
+ * the pair forces, with each viscosity form. */
+static const char *cloud_case =
+    "dimension: %d\n"
+    "domain: {min: %s, max: %s}\n"
+    "dx: 0.05\n"
+    "end_time: 1\n"
+    "output_interval: 1\n"
+    "fluid: {smoothing_length: volume, max_smoothing_ratio: 1.2, viscosity: %s, artificial_alpha: 0.5,\n"
+    "        tensile_correction: 0.1}\n"
+    "materials:\n"
+    "  - {name: liquid, density: 1000, sound_speed: 10, viscosity: 0.5}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: fluid, material: liquid, min: %s, max: %s}\n";
+
+static double uniform(unsigned long long *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*state >> 11) / 9007199254740992.0; /* [0, 1) */
+}
+
+enum { CLOUD_MAX = 216 };
+
+typedef struct {
+    int n;
+    double ma[CLOUD_MAX][3]; /* m a by particle id */
+    double h[CLOUD_MAX];     /* smoothing length by particle id */
+    double spread;           /* max h / min h */
+} cloud_result;
+
+/* The same draws for a particle id on every backend: jitter, velocity, density. */
+static void perturb_cloud(amsph_host_particles *h, int dim, double dx)
+{
+    for (int i = 0; i < h->n; ++i) {
+        unsigned long long state = 12345 + 7919ULL * ((unsigned *)h->data[AMSPH_FIELD_ID])[i];
+        for (int d = 0; d < dim; ++d) {
+            amsph_host_real(h, AMSPH_FIELD_POSITION)[3 * i + d] += (amsph_real)(0.3 * dx * (uniform(&state) - 0.5));
+            amsph_host_real(h, AMSPH_FIELD_VELOCITY)[3 * i + d] = (amsph_real)(0.2 * (uniform(&state) - 0.5));
+        }
+        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(1000.0 * (0.9 + 0.2 * uniform(&state)));
+    }
+}
+
+static void keep_cloud(const amsph_host_particles *h, cloud_result *r)
+{
+    double lo = INFINITY, hi = 0.0;
+    r->n = h->n;
+    for (int i = 0; i < h->n && i < CLOUD_MAX; ++i) {
+        const unsigned id = ((unsigned *)h->data[AMSPH_FIELD_ID])[i];
+        const double m = amsph_host_real(h, AMSPH_FIELD_MASS)[i];
+        for (int d = 0; d < 3; ++d)
+            r->ma[id][d] = m * amsph_host_real(h, AMSPH_FIELD_ACCELERATION)[3 * i + d];
+        r->h[id] = amsph_host_real(h, AMSPH_FIELD_SMOOTHING_LENGTH)[i];
+        lo = fmin(lo, r->h[id]);
+        hi = fmax(hi, r->h[id]);
+    }
+    r->spread = hi / lo;
+}
+
+/* The perturbed cloud's pair forces on backend b. */
+static int cloud_forces(amsph_backend *b, int dim, const char *viscosity, cloud_result *r)
+{
+    char text[2048];
+    const char *corner = dim == 2 ? "[-1, -1]" : "[-1, -1, -1]", *far = dim == 2 ? "[1, 1]" : "[1, 1, 1]";
+    const char *lo = dim == 2 ? "[-0.3, -0.3]" : "[-0.15, -0.15, -0.15]", *hi = dim == 2 ? "[0.3, 0.3]" : "[0.15, 0.15, 0.15]";
+    snprintf(text, sizeof text, cloud_case, dim, corner, far, viscosity, lo, hi);
+    amsph_case c;
+    AMSPH_CHECK(parse_text(text, &c));
+    amsph_sim s;
+    amsph_host_particles h;
+    int status = amsph_sim_create(&c, b, &s);
+    if (!status)
+        status = amsph_particles_download(&s.particles, &h);
+    if (!status) {
+        perturb_cloud(&h, dim, c.dx);
+        amsph_particles_free(&s.particles);
+        status = amsph_particles_upload(b, &h, &s.particles);
+        amsph_host_free(&h);
+    }
+    if (!status)
+        status = amsph_grid_sort(&s.grid, &s.particles);
+    if (!status)
+        status = amsph_fluid_density(&s, 0.0); /* the Shepard sums and h at these densities */
+    if (!status)
+        status = amsph_fluid_forces(&s);
+    if (!status)
+        status = amsph_particles_download(&s.particles, &h);
+    if (!status) {
+        keep_cloud(&h, r);
+        status = h.n <= CLOUD_MAX ? 0 : amsph_fail("the cloud has %d particles, more than %d", h.n, CLOUD_MAX);
+        amsph_host_free(&h);
+    }
+    amsph_sim_free(&s);
+    return status;
+}
+
+/* Each h follows its particle's volume, in 2D and 3D: the cloud's h spans
+ * (1.1 / 0.9)^(1/d). With h_ab = (h_a + h_b) / 2 every pair's forces are equal and opposite:
+ * the cloud's sum of m a is round-off (below 1e-5 of sum |m a|; a pair
+ * kernel at h_a alone leaves 8e-3 here in 2D), for laminar and artificial
+ * viscosity with the tensile correction, in 2D and 3D; both backends agree
+ * to 1e-4. */
+static void test_volume_smoothing_momentum(void)
+{
+    static const char *forms[] = {"laminar", "artificial"};
+    static cloud_result r[TESTING_BACKENDS];
+    for (int dim = 2; dim <= 3; ++dim)
+        for (int f = 0; f < 2; ++f) {
+            int ran[TESTING_BACKENDS] = {0, 0};
+            for (int k = 0; k < TESTING_BACKENDS; ++k) {
+                amsph_backend *b = testing_backend(k);
+                if (!b)
+                    continue;
+                const int status = cloud_forces(b, dim, forms[f], &r[k]);
+                amsph_backend_destroy(b);
+                CHECK_OK(status);
+                ran[k] = !status;
+                double net[3] = {0.0, 0.0, 0.0}, scale = 0.0;
+                for (int id = 0; id < r[k].n; ++id) {
+                    const double *ma = r[k].ma[id];
+                    for (int d = 0; d < 3; ++d)
+                        net[d] += ma[d];
+                    scale += sqrt(ma[0] * ma[0] + ma[1] * ma[1] + ma[2] * ma[2]);
+                }
+                const double momentum = sqrt(net[0] * net[0] + net[1] * net[1] + net[2] * net[2]);
+                fprintf(stderr, "%dD %s, backend %d: |sum m a| / sum |m a| = %.3e, h spread %.4f\n", dim, forms[f],
+                        k, momentum / scale, r[k].spread);
+                /* the densities span nearly 0.9 to 1.1 rho0, so h spans (1.1 / 0.9)^(1/d) to within 1% */
+                const double span = pow(1.1 / 0.9, 1.0 / dim);
+                CHECK(fabs(r[k].spread / span - 1.0) < 0.01, "%dD: h spreads by %.4f, not (1.1 / 0.9)^(1/%d) = %.4f",
+                      dim, r[k].spread, dim, span);
+                CHECK(momentum < 1e-5 * scale, "%dD %s, backend %d: momentum %.3e of %.3e", dim, forms[f], k,
+                      momentum, scale);
+            }
+            if (ran[0] && ran[1]) {
+                double worst = 0.0, largest = 0.0, h_diff = 0.0;
+                for (int id = 0; id < r[0].n; ++id)
+                    for (int d = 0; d < 3; ++d) {
+                        worst = fmax(worst, fabs(r[0].ma[id][d] - r[1].ma[id][d]));
+                        largest = fmax(largest, fabs(r[0].ma[id][d]));
+                        h_diff = fmax(h_diff, fabs(r[0].h[id] / r[1].h[id] - 1.0));
+                    }
+                CHECK(worst < 1e-4 * largest && h_diff < 1e-5, "%dD %s: the backends differ by %.3e of m a, %.3e of h",
+                      dim, forms[f], worst / largest, h_diff);
+            }
+        }
+}
+
 /* ---- the sweep ---------------------------------------------------------- */
 
 static void print_row(int k, const char *variant, double dx, const errors *e, const run_record *r)
@@ -499,7 +770,8 @@ static int sweep(int argc, char **argv)
     while (k < N_CASES && strcmp(argv[2], cases[k].name) != 0)
         ++k;
     if (k == N_CASES) {
-        fprintf(stderr, "test_isothermal sweep: unknown case '%s' (cycle, cycle_3d, column, sinking)\n", argv[2]);
+        fprintf(stderr, "test_isothermal sweep: unknown case '%s' (cycle, cycle_volume_h, cycle_3d, column, sinking)\n",
+                argv[2]);
         return 2;
     }
     printf("| case | dx (m) | particles | steps | wall (s) | particle-steps/s | reached (s) |");
@@ -534,13 +806,15 @@ int main(int argc, char **argv)
         const char *name;
         void (*run)(void);
     } parts[] = {{"law", test_steel_density}, {"law", test_thermal_drives_rho0}, {"cycle", test_cycle},
-                 {"cycle_3d", test_cycle_3d},   {"column", test_column},                {"sinking", test_sinking}};
+                 {"cycle_3d", test_cycle_3d},   {"column", test_column},                {"sinking", test_sinking},
+                 {"smoothing", test_volume_smoothing}, {"smoothing", test_volume_smoothing_momentum}};
     int ran = 0;
     for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k)
         if (argc < 2 || strcmp(argv[1], parts[k].name) == 0) {
             parts[k].run();
             ++ran;
         }
-    CHECK(ran > 0, "unknown part '%s' (law, cycle, cycle_3d, column, sinking; or sweep CASE DX...)", argv[1]);
+    CHECK(ran > 0, "unknown part '%s' (law, cycle, cycle_3d, column, sinking, smoothing; or sweep CASE DX...)",
+          argv[1]);
     return testing_finish();
 }

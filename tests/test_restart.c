@@ -29,14 +29,14 @@
 #include "testing.h"
 
 /* The 2D dam break at a coarse resolution (about 350 particles), with
- * temperatures so that every optional field is there; output times fall
- * between steps 100 and 200. */
-#define DAMBREAK_HEAD                                                                              \
+ * temperatures so that every optional field is there, and `fluid_extra`
+ * keys of the fluid module; output times fall between steps 100 and 200. */
+#define DAMBREAK_WITH(fluid_extra)                                                                 \
     "domain: {min: [-0.05, -0.05], max: [0.634, 0.45]}\n"                                          \
     "dx: 0.0146\n"                                                                                 \
     "output_interval: 0.005\n"                                                                     \
     "gravity: [0.0, -9.81]\n"                                                                      \
-    "fluid: {viscosity: artificial, artificial_alpha: 0.1, tensile_correction: 0.1}\n"             \
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1, tensile_correction: 0.1" fluid_extra "}\n" \
     "materials:\n"                                                                                 \
     "  - {name: water, density: 1000, viscosity: 1.0e-3, sound_speed: 25}\n"                       \
     "geometry:\n"                                                                                  \
@@ -45,7 +45,11 @@
     "  - {shape: box, kind: fluid, material: water, min: [0, 0], max: [0.146, 0.292], "            \
     "hydrostatic: true, temperature: 300}\n"
 
+#define DAMBREAK_HEAD DAMBREAK_WITH("")
+
 static const char *dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_HEAD;
+/* The same with the smoothing length that follows the volume (its field in the checkpoint). */
+static const char *volume_h_dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_WITH(", smoothing_length: volume");
 static const char *dambreak_longer = "dimension: 2\nend_time: 0.5\n" DAMBREAK_HEAD;
 /* A 2D steel slab on a cold wall under a 1 kW beam (laser_slab_2d.yaml's
  * geometry), radiating, by implicit midpoint: it melts from step 70 on, and
@@ -556,6 +560,7 @@ int main(void)
         test_bit_identical(k, dambreak, "dambreak");
         test_bit_identical(k, melting_slab, "slab");
         test_bit_identical(k, grain_dambreak, "grains");
+        test_bit_identical(k, volume_h_dambreak, "volume_h");
     }
     amsph_backend *b = testing_backend(0);
     amsph_case c;
