@@ -162,7 +162,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
-                             field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_int(n), amsph_arg_real(dt),
+                             field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->closest),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), amsph_arg_real(dt),
                              field(s, AMSPH_FIELD_DENSITY)));
     return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
 }

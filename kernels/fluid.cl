@@ -286,7 +286,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     FOR_EACH_ITEM(a, n)
     {
         const int fluid_a = kind[a] == KIND_FLUID;
-        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), REAL(1e30), 0};
+        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0};
         add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
                             density, reference_density, smoothing_length, mass, kind, material, cell, &g, cell_start,
                             materials, &p, &sums);

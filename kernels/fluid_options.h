@@ -20,4 +20,8 @@
 #define SMOOTHING_FIXED 0  /* h = h_over_dx dx for every particle */
 #define SMOOTHING_VOLUME 1 /* fluid particles: h_a = h0 (V_a / V0)^(1/d) (Russell 2018 Eq. 3.54) */
 
+/* The nearest-neighbour distance (the `closest` buffer) of a fluid particle
+ * with no other particle within its support: a lone particle. */
+#define NO_NEIGHBOUR REAL(1e30)
+
 #endif

@@ -12,6 +12,7 @@
  * Fluid particles are kicked; walls and fixed solids keep their velocity
  * (a moving wall drifts at it) and take their density from the fluid. */
 #include "device.h"
+#include "fluid_options.h"
 #include "kinds.h"
 
 /* a = g for fluid, 0 elsewhere: the rates of a scene without fluid forces. */
@@ -55,13 +56,20 @@ KERNEL void damp_velocity(GLOBAL const int *kind, int n, real factor, GLOBAL rea
     }
 }
 
-KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, int n,
-                            real dt, GLOBAL real *density)
+/* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl). A
+ * lone particle, with no other particle within its support (NO_NEIGHBOUR),
+ * takes its reference density rho0(T): continuity has nothing to expand or
+ * compress it against, and a drop that small stands at the ambient
+ * pressure, p = p_b. Without this a spray particle heated in a beam keeps
+ * the density it left the melt with while rho0(T) falls (in the 200 W track,
+ * 35% apart: the density guard), and meets the melt again in tension. */
+KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, GLOBAL const real *closest,
+                            GLOBAL const real *reference_density, int n, real dt, GLOBAL real *density)
 {
     FOR_EACH_ITEM(i, n)
     {
         if (kind[i] == KIND_FLUID)
-            density[i] += dt * density_rate[i];
+            density[i] = closest[i] == NO_NEIGHBOUR ? reference_density[i] : density[i] + dt * density_rate[i];
     }
 }
 
