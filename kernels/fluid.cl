@@ -272,9 +272,13 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
  * other particle, for the guards. The rates are computed for fluid
  * particles. Gamma is computed for every fluid particle, and for the others
  * where a fluid particle lies within the support: only a fluid neighbour's
- * pair force reads it (fluid_pair.h). Elsewhere it is 0, and such a particle
- * reads no wall: the walls far from the fluid, most of a tank's, cost only
- * a pass over the non-wall cells around them (kernels/grid_geometry.h). */
+ * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
+ * and such a particle reads no wall: the walls far from the fluid, most of a
+ * tank's, cost only a pass over the non-wall cells around them
+ * (kernels/grid_geometry.h). With the symmetric and multiphase pressure
+ * forms no force reads a non-fluid particle's Gamma, and it is the sum over
+ * its non-wall neighbours only: positive where a fluid particle is within
+ * the support, which is what wall_state asks of it. */
 KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *density, GLOBAL const real *reference_density,
                        GLOBAL const real *smoothing_length,
@@ -290,7 +294,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
                             density, reference_density, smoothing_length, mass, kind, material, cell, &g, cell_start,
                             materials, &p, &sums);
-        if (!fluid_a && sums.fluid_near)
+        if (!fluid_a && sums.fluid_near && p.pressure_gradient == PRESSURE_RENORMALISED)
             add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
                                 smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
