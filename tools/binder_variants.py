@@ -11,9 +11,10 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in 2D and without 
 # (log-normal diameters 16 to 32 um, settled by the powder-bed generator,
 # each grain a rigid body of the `grains:` module) on a 20 um substrate,
 # in a closed box 320 um wide. Its centre starts 100 um above the
-# substrate, as Fuchs's. Fuchs's binder makes a 60-degree contact angle;
-# here it wets the grains completely (the contact angle of
-# `materials[].contact_angle` is stable only at 90 degrees so far, README).
+# substrate, as Fuchs's. The binder meets the grains, the substrate and
+# the walls at Fuchs's equilibrium wetting angle theta0 = 60 degrees
+# (Fuchs Table 4; `contact_angle`, normal correction of their Eqs. 27-29:
+# grains count as solid in the solid colour c_sf, as Fuchs's).
 # The speed of sound (@SOUND@ m/s for the binder) is the larger of twenty
 # times the impact speed (the impact's water hammer compresses by v / c,
 # the first particle to hit a grain by up to twice that) and ten times a
@@ -42,7 +43,8 @@ fluid: {viscosity: artificial, artificial_alpha: 0.1, shifting: 0.5, max_density
 surface: {}
 grains: {contact_stiffness: @STIFFNESS@, contact_damping: @DAMPING@}
 materials:
-  - {name: binder, density: 1000, viscosity: 1.0e-3, surface_tension: 0.5, sound_speed: @SOUND@}
+  - {name: binder, density: 1000, viscosity: 1.0e-3, surface_tension: 0.5, sound_speed: @SOUND@,
+     contact_angle: 60}   # Fuchs et al. 2022 Table 4: theta0 = 60 degrees
   - {name: steel, density: 7430, sound_speed: @STEEL_SOUND@}
 geometry:
   - {shape: box, kind: wall, material: steel, min: [0, 0], max: [3.2e-4, 2.0e-4], layers: 3}
