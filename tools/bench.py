@@ -14,7 +14,7 @@ Writes OUT/throughput.csv, OUT/convergence.csv, OUT/throughput.png (throughput
 and time per step against particles), OUT/error_vs_wall.png and OUT/tables.md
 (the Markdown tables for BENCHMARKS.md, also printed), from the repository root:
 
-    tools/bench.py --out bench-out            # the full sweep (about 30 min on 2 cores)
+    tools/bench.py --out bench-out            # the full sweep (estimated over an hour on 2 cores)
     tools/bench.py --out bench-out --quick    # a regression check, under two minutes
     tools/bench.py --out bench-out --max-particles 3e5   # the full sweep without the 1e6 rows
 
@@ -35,6 +35,7 @@ SCENES = [("fluid", "cases/validation/dambreak_2d.yaml"), ("fluid", "cases/valid
           ("grains", "cases/bench/am_grains_2d.yaml"), ("grains", "cases/bench/am_grains_3d.yaml")]
 TITLES = {"fluid": "fluid dam break", "am": "AM dam break (every module but the grains)",
           "grains": "AM dam break on a bed of mobile grains (every module)"}
+STYLES = {"fluid": "o-", "am": "s--", "grains": "^:"}
 # Spacings of the convergence sweeps (coarsest first is not required).
 FULL_SWEEPS = {
     "poiseuille": [1e-4, 5e-5, 2.5e-5],
@@ -45,9 +46,11 @@ FULL_SWEEPS = {
     "interface": [0.04, 0.02, 0.01],
     "stefan": [0.04, 0.02, 0.01],
     "young_laplace": [0.1, 0.05, 0.025],
-    "expansion_cycle": [0.1, 0.05, 0.025],
-    "expansion_column": [0.1, 0.05, 0.025],
-    "sinking": [0.1, 0.05, 0.025],
+    # Russell's Tests 1, 3 and 4 stop at dx = 0.05: at 0.025 they took 3943, 4776 and 912 s
+    # (BENCHMARKS.md, issue 5's section; `tools/convergence.py expansion_cycle 0.1 0.05 0.025`)
+    "expansion_cycle": [0.1, 0.0707, 0.05],
+    "expansion_column": [0.1, 0.0707, 0.05],
+    "sinking": [0.1, 0.0707, 0.05],
 }
 QUICK_SWEEPS = {"poiseuille": [1e-4, 7.07e-5, 5e-5], "conduction": [0.0667, 0.05, 0.04]}
 FULL_COUNTS, QUICK_COUNTS = [1e4, 3e4, 1e5, 3e5, 1e6], [1e4, 2e4]
@@ -172,8 +175,9 @@ def plot(thr, conv, out):
     for (physics, dim, backend), group in series(thr).items():
         n = [int(r["particles"]) for r in group]
         label = f"{physics} {dim}D {backend}"
-        left.plot(n, [float(r["particle_steps_per_s"]) for r in group], "o-", label=label)
-        right.plot(n, [float(r["ms_per_step"]) for r in group], "o-", label=f"{label}: N^{exponent(group):.2f}")
+        style = STYLES[physics]  # a line style per scene: the colour cycle repeats after ten series
+        left.plot(n, [float(r["particle_steps_per_s"]) for r in group], style, label=label)
+        right.plot(n, [float(r["ms_per_step"]) for r in group], style, label=f"{label}: N^{exponent(group):.2f}")
     left.set(xscale="log", yscale="log", xlabel="particles", ylabel="particle-steps / s", title="Throughput")
     right.set(xscale="log", yscale="log", xlabel="particles", ylabel="ms per step", title="Cost growth")
     for ax in (left, right):
