@@ -98,7 +98,21 @@ static int set_particle_velocities(amsph_sim *s)
                         amsph_arg_buffer(s->grains.records), field(s, AMSPH_FIELD_VELOCITY));
 }
 
-int amsph_grains_kick(amsph_sim *s, double half_dt)
+/* One stage of the module's step, given the step's time (or half of it). */
+typedef int (*grain_stage)(amsph_sim *s, double dt);
+
+/* Runs `stage` timed as the grains' phase of the step (host/timers.h), then
+ * returns to the phase that was current: the module's calls sit inside the
+ * integration, forces and thermal phases. */
+static int in_grains_phase(amsph_sim *s, grain_stage stage, double dt)
+{
+    amsph_phase outer;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_GRAINS, &outer));
+    AMSPH_CHECK(stage(s, dt));
+    return amsph_sim_phase(s, outer, NULL);
+}
+
+static int kick(amsph_sim *s, double half_dt)
 {
     const int count = s->grains.count;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_kick", count, amsph_arg_int(count), amsph_arg_real(half_dt),
@@ -106,7 +120,12 @@ int amsph_grains_kick(amsph_sim *s, double half_dt)
     return set_particle_velocities(s);
 }
 
-int amsph_grains_drift(amsph_sim *s, double dt)
+int amsph_grains_kick(amsph_sim *s, double half_dt)
+{
+    return in_grains_phase(s, kick, half_dt);
+}
+
+static int drift(amsph_sim *s, double dt)
 {
     const int n = s->particles.n, count = s->grains.count;
     /* in 2D omega lies along z and the half turn keeps it (kernels/grains.cl) */
@@ -118,6 +137,11 @@ int amsph_grains_drift(amsph_sim *s, double dt)
                              field(s, AMSPH_FIELD_POSITION)));
     return AMSPH_LAUNCH(s->backend, "grain_drift_centres", count, amsph_arg_int(count), amsph_arg_real(dt),
                         amsph_arg_buffer(s->grains.records));
+}
+
+int amsph_grains_drift(amsph_sim *s, double dt)
+{
+    return in_grains_phase(s, drift, dt);
 }
 
 /* The grain particles listed grain by grain (order), then the sums. */
@@ -142,8 +166,10 @@ static int grain_sums(amsph_sim *s, int recover_spin)
                         amsph_arg_int(recover_spin), amsph_arg_buffer(gs->records));
 }
 
-int amsph_grains_forces(amsph_sim *s)
+/* The grain particles' forces, then the grains' sums (the step's time is not needed). */
+static int forces(amsph_sim *s, double unused_dt)
 {
+    (void)unused_dt;
     amsph_grains_state *gs = &s->grains;
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_particle_forces", n, field(s, AMSPH_FIELD_POSITION),
@@ -161,13 +187,20 @@ int amsph_grains_forces(amsph_sim *s)
     return 0;
 }
 
+int amsph_grains_forces(amsph_sim *s)
+{
+    return in_grains_phase(s, forces, 0.0);
+}
+
 int amsph_grains_recover(amsph_sim *s)
 {
     return grain_sums(s, 1);
 }
 
-int amsph_grains_change_phase(amsph_sim *s)
+/* Melting and capture (the step's time is not needed). */
+static int change_phase(amsph_sim *s, double unused_dt)
 {
+    (void)unused_dt;
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_capture", n, field(s, AMSPH_FIELD_POSITION), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_LIQUID_FRACTION),
@@ -178,6 +211,11 @@ int amsph_grains_change_phase(amsph_sim *s)
     return AMSPH_LAUNCH(s->backend, "grain_change_phase", n, field(s, AMSPH_FIELD_LIQUID_FRACTION),
                         field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n), amsph_arg_buffer(s->thermal_table),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_GRAIN));
+}
+
+int amsph_grains_change_phase(amsph_sim *s)
+{
+    return in_grains_phase(s, change_phase, 0.0);
 }
 
 void amsph_grains_dt(const amsph_sim *s, double *dt, const char **limit)

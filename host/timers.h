@@ -17,6 +17,7 @@
     X(SURFACE, "surface")         /* surface tension, Marangoni */                                 \
     X(THERMAL, "thermal")         /* enthalpy step: conduction, radiation, phase change */         \
     X(LASER, "laser")             /* absorbed laser power */                                       \
+    X(GRAINS, "grains")           /* grain forces, sums, kicks, drift, melting and capture */      \
     X(INTEGRATION, "integration") /* kicks, drift, stable time step */                             \
     X(GUARDS, "guards")           /* run guards and the last good copy */
 

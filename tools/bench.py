@@ -2,9 +2,10 @@
 """The benchmark of BENCHMARKS.md in one command (issue 8):
 
   - throughput: `amsph bench throughput` on the fluid dam break
-    (cases/validation/dambreak_{2d,3d}.yaml) and the additive-manufacturing
-    scene (cases/bench/am_dambreak_{2d,3d}.yaml) on every backend, from 1e4 to
-    1e6 particles: particle-steps/s, ms per module, device bytes per particle,
+    (cases/validation/dambreak_{2d,3d}.yaml), the additive-manufacturing
+    scene (cases/bench/am_dambreak_{2d,3d}.yaml) and that scene on a powder bed
+    of mobile grains (cases/bench/am_grains_{2d,3d}.yaml) on every backend,
+    from 1e4 to 1e6 particles (--max-particles caps them): particle-steps/s, ms per module, device bytes per particle,
     and the least-squares exponent of time per step against particles;
   - speed against error: tools/convergence.py on every case with a known
     answer at three resolutions: error, wall time, observed order.
@@ -13,8 +14,9 @@ Writes OUT/throughput.csv, OUT/convergence.csv, OUT/throughput.png (throughput
 and time per step against particles), OUT/error_vs_wall.png and OUT/tables.md
 (the Markdown tables for BENCHMARKS.md, also printed), from the repository root:
 
-    tools/bench.py --out bench-out            # the full sweep (about 30 min on 2 cores)
+    tools/bench.py --out bench-out            # the full sweep (estimated over an hour on 2 cores)
     tools/bench.py --out bench-out --quick    # a regression check, under two minutes
+    tools/bench.py --out bench-out --max-particles 3e5   # the full sweep without the 1e6 rows
 
 The threads are the environment's (OMP_NUM_THREADS; pocl: POCL_MAX_PTHREAD_COUNT).
 Numbers are measurements, never assertions; the load average before and after
@@ -29,7 +31,11 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 import convergence  # noqa: E402
 
 SCENES = [("fluid", "cases/validation/dambreak_2d.yaml"), ("fluid", "cases/validation/dambreak_3d.yaml"),
-          ("am", "cases/bench/am_dambreak_2d.yaml"), ("am", "cases/bench/am_dambreak_3d.yaml")]
+          ("am", "cases/bench/am_dambreak_2d.yaml"), ("am", "cases/bench/am_dambreak_3d.yaml"),
+          ("grains", "cases/bench/am_grains_2d.yaml"), ("grains", "cases/bench/am_grains_3d.yaml")]
+TITLES = {"fluid": "fluid dam break", "am": "AM dam break (every module but the grains)",
+          "grains": "AM dam break on a bed of mobile grains (every module)"}
+STYLES = {"fluid": "o-", "am": "s--", "grains": "^:"}
 # Spacings of the convergence sweeps (coarsest first is not required).
 FULL_SWEEPS = {
     "poiseuille": [1e-4, 5e-5, 2.5e-5],
@@ -40,13 +46,15 @@ FULL_SWEEPS = {
     "interface": [0.04, 0.02, 0.01],
     "stefan": [0.04, 0.02, 0.01],
     "young_laplace": [0.1, 0.05, 0.025],
-    "expansion_cycle": [0.1, 0.05, 0.025],
-    "expansion_column": [0.1, 0.05, 0.025],
-    "sinking": [0.1, 0.05, 0.025],
+    # Russell's Tests 1, 3 and 4 stop at dx = 0.05: at 0.025 they took 3943, 4776 and 912 s
+    # (BENCHMARKS.md, issue 5's section; `tools/convergence.py expansion_cycle 0.1 0.05 0.025`)
+    "expansion_cycle": [0.1, 0.0707, 0.05],
+    "expansion_column": [0.1, 0.0707, 0.05],
+    "sinking": [0.1, 0.0707, 0.05],
 }
 QUICK_SWEEPS = {"poiseuille": [1e-4, 7.07e-5, 5e-5], "conduction": [0.0667, 0.05, 0.04]}
 FULL_COUNTS, QUICK_COUNTS = [1e4, 3e4, 1e5, 3e5, 1e6], [1e4, 2e4]
-PHASES = ["sort", "density", "forces", "surface", "thermal", "laser", "integration", "guards"]
+PHASES = ["sort", "density", "forces", "surface", "thermal", "laser", "grains", "integration", "guards"]
 
 
 def machine():
@@ -61,6 +69,13 @@ def machine():
         with open("/etc/os-release") as f:
             system = re.search(r'PRETTY_NAME="([^"]*)"', f.read()).group(1)
     return f"{model}, {os.cpu_count()} cores, {system}"
+
+
+def commit():
+    """The source's commit, marked when the work tree differs from it."""
+    git = lambda *a: subprocess.run(["git", "-C", ROOT, *a], capture_output=True, text=True).stdout.strip()
+    head = git("rev-parse", "--short", "HEAD") or "unknown"
+    return head + (" (modified)" if git("status", "--porcelain", "--untracked-files=no") else "")
 
 
 def backends(amsph):
@@ -123,7 +138,7 @@ def tables(thr, conv, header):
     out = io.StringIO()
     out.write(header + "\n\n")
     for (physics, dim, backend), group in series(thr).items():
-        out.write(f"{physics} dam break, {dim}D, {group[0]['backend']} ({group[0]['build']}), "
+        out.write(f"{TITLES[physics]}, {dim}D, {group[0]['backend']} ({group[0]['build']}), "
                   f"{group[0]['steps']} timed steps; module columns in ms per step:\n\n")
         out.write("| particles | ms/step | particle-steps/s | device B/particle | " +
                   " | ".join(PHASES) + " | other |\n|" + "---|" * (len(PHASES) + 5) + "\n")
@@ -160,8 +175,9 @@ def plot(thr, conv, out):
     for (physics, dim, backend), group in series(thr).items():
         n = [int(r["particles"]) for r in group]
         label = f"{physics} {dim}D {backend}"
-        left.plot(n, [float(r["particle_steps_per_s"]) for r in group], "o-", label=label)
-        right.plot(n, [float(r["ms_per_step"]) for r in group], "o-", label=f"{label}: N^{exponent(group):.2f}")
+        style = STYLES[physics]  # a line style per scene: the colour cycle repeats after ten series
+        left.plot(n, [float(r["particle_steps_per_s"]) for r in group], style, label=label)
+        right.plot(n, [float(r["ms_per_step"]) for r in group], style, label=f"{label}: N^{exponent(group):.2f}")
     left.set(xscale="log", yscale="log", xlabel="particles", ylabel="particle-steps / s", title="Throughput")
     right.set(xscale="log", yscale="log", xlabel="particles", ylabel="ms per step", title="Cost growth")
     for ax in (left, right):
@@ -191,6 +207,7 @@ def main():
     ap.add_argument("--backend", action="append", choices=["openmp", "opencl"],
                     help="throughput backends (repeatable; default: openmp and opencl where present)")
     ap.add_argument("--particles", type=float, action="append", help="throughput counts (repeatable)")
+    ap.add_argument("--max-particles", type=float, help="leave out the throughput counts above this")
     ap.add_argument("--steps", type=int, help="timed steps per count (default 10, quick 3)")
     ap.add_argument("--convergence-backend", default="openmp", choices=["openmp", "opencl"])
     ap.add_argument("--no-convergence", action="store_true")
@@ -201,11 +218,12 @@ def main():
     start, load = time.monotonic(), os.getloadavg()[0]
     names = args.backend or backends(amsph)
     counts = args.particles or (QUICK_COUNTS if args.quick else FULL_COUNTS)
+    counts = [n for n in counts if args.max_particles is None or n <= args.max_particles]
     steps = args.steps or (3 if args.quick else 10)
     thr = throughput(amsph, out, names, counts, steps, 1 if args.quick else 3)
     conv = [] if args.no_convergence else sweeps(amsph, QUICK_SWEEPS if args.quick else FULL_SWEEPS,
                                                  args.convergence_backend)
-    header = (f"Machine: {machine()}; {thr[0]['build']}; OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}, "
+    header = (f"Machine: {machine()}; commit {commit()}; {thr[0]['build']}; OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}, "
               f"POCL_MAX_PTHREAD_COUNT={os.environ.get('POCL_MAX_PTHREAD_COUNT', 'unset')}; "
               f"{datetime.date.today()}; load average {load:.2f} at the start, {os.getloadavg()[0]:.2f} at the end; "
               f"{time.monotonic() - start:.0f} s in all")
