@@ -384,6 +384,7 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
             const smoothing_scale scale = smoothing_scale_of(p.h);
+            const real w_dx = smoothing_w_at(&scale, p.dx);
             real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
@@ -400,7 +401,8 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 const smoothing_scale scale_ab =
                     pair_smoothing_scale(&scale, h_a, particle_smoothing_length(smoothing_length, b, &p), &p);
                 const real fv = smoothing_grad_factor_at(&scale_ab, r) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
-                const real w = smoothing_w_at(&scale_ab, r) / smoothing_w_at(&scale_ab, p.dx);
+                const real w_dx_ab = p.smoothing_length == SMOOTHING_VOLUME ? smoothing_w_at(&scale_ab, p.dx) : w_dx;
+                const real w = smoothing_w_at(&scale_ab, r) / w_dx_ab;
                 const real clumping = REAL(1.0) + REAL(0.2) * (w * w) * (w * w);
                 for (int d = 0; d < 3; ++d) {
                     grad_c[d] += clumping * fv * r_ab[d];

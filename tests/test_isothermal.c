@@ -34,6 +34,7 @@
 #include "material.h"
 #include "sim.h"
 #include "testing.h"
+#include "testing_run.h"
 #include "voronoi.h"
 
 #define PI 3.14159265358979323846
@@ -421,14 +422,9 @@ static void test_lone_particles(void)
     char err[512];
     CHECK(amsph_case_parse(lone_case, strlen(lone_case), "lone.yaml", &c, err, sizeof err) == 0, "%s", err);
     for (int k = 0; k < TESTING_BACKENDS; ++k) {
-        amsph_backend *b = testing_backend(k);
-        if (!b)
-            continue;
-        amsph_sim s;
         amsph_host_particles h;
-        CHECK_OK(amsph_sim_create(&c, b, &s));
-        CHECK_OK(amsph_sim_advance(&s, c.end_time, NULL, NULL));
-        CHECK_OK(amsph_particles_download(&s.particles, &h));
+        if (testing_run_case(&c, k, c.end_time, &h))
+            continue;
         CHECK(h.n == 2, "%d particles, not the two lone ones", h.n);
         for (int i = 0; i < h.n; ++i) {
             const double t = amsph_host_real(&h, AMSPH_FIELD_TEMPERATURE)[i];
@@ -438,8 +434,6 @@ static void test_lone_particles(void)
             CHECK(fabs(rho - rho0) < 1e-5 * rho0, "lone particle %d: rho %g against rho0(T) %g", i, rho, rho0);
         }
         amsph_host_free(&h);
-        amsph_sim_free(&s);
-        amsph_backend_destroy(b);
     }
 }
 
