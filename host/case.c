@@ -146,6 +146,8 @@ static const choice slip_choices[] = {
     {"no_slip", WALL_NO_SLIP, 0}, {"free_slip", WALL_FREE_SLIP, 0}, {NULL, 0, 0}};
 static const choice smoothing_choices[] = {
     {"fixed", SMOOTHING_FIXED, 0}, {"volume", SMOOTHING_VOLUME, 0}, {NULL, 0, 0}};
+static const choice fluid_integration_choices[] = {
+    {"leapfrog", INTEGRATION_LEAPFROG, 0}, {"verlet", INTEGRATION_VERLET, 0}, {NULL, 0, 0}};
 static const choice absorption_choices[] = {{"volumetric", AMSPH_ABSORPTION_VOLUMETRIC, 0},
                                             {"surface", AMSPH_ABSORPTION_SURFACE, 0},
                                             {NULL, 0, 0}};
@@ -310,6 +312,7 @@ static const key_spec specs[] = {
      .def = WALL_NO_SLIP, .offset = FLUID(wall_slip), .doc = "Wall condition for the velocity"},
     {.section = SEC_FLUID, .key = "cfl", .type = VT_NUMBER, .flags = F_ABOVE_LO | F_UP_TO_HI,
      .lo = 0, .hi = 1, .def = 0.25, .offset = FLUID(cfl),
+     .rule = "with `integration: verlet` at most 0.2, its default there",
      .doc = "Acoustic CFL number: dt <= cfl h / (c0 + max |u|)"},
     {.section = SEC_FLUID, .key = "dt_min", .type = VT_NUMBER, .unit = "s", .flags = F_FROM_LO,
      .lo = 0, .def = 0, .offset = FLUID(dt_min),
@@ -341,6 +344,18 @@ static const key_spec specs[] = {
      .lo = 1, .hi = 2, .def = 1.1, .offset = FLUID(max_smoothing_ratio),
      .rule = "with `smoothing_length: volume`: a particle whose h exceeds it times h0 stops the run",
      .doc = "Largest h / h0 of `smoothing_length: volume`: the neighbour grid's cells are laid out for it"},
+    {.section = SEC_FLUID, .key = "integration", .type = VT_CHOICE, .choices = fluid_integration_choices,
+     .def = INTEGRATION_LEAPFROG, .offset = FLUID(integration),
+     .rule = "verlet: the fluid module alone (no thermal, surface, grains or temperature history), "
+             "pressure_gradient symmetric, smoothing_length fixed, no shifting or damping",
+     .doc = "Time integration: leapfrog (kick-drift-kick with the density after the drift, Russell Eq. 3.55; "
+            "two neighbour passes per step) or verlet (Verlet 1967 as in DualSPHysics: density and "
+            "acceleration from one neighbour pass, v and rho over two steps, an Euler step every "
+            "`verlet_steps`)"},
+    {.section = SEC_FLUID, .key = "verlet_steps", .type = VT_INT, .flags = F_FROM_LO, .lo = 1, .def = 40,
+     .offset = FLUID(verlet_steps),
+     .doc = "With `integration: verlet`: one step in this many is an Euler step, which keeps the two "
+            "interleaved sequences of the Verlet scheme from drifting apart"},
     {.section = SEC_FLUID, .key = "barrier", .type = VT_MAP, .sub = SEC_BARRIER,
      .doc = "Barrier forces between pairs closer than `distance` (Fuchs et al. 2022 Eq. 34); "
             "present: on. In 2D, stiffness and damping are per metre of depth"},
@@ -748,7 +763,8 @@ typedef struct {
     yaml_node_t preset_key[MAX_PRESET_KEYS];   /* the keys and values a preset fills into */
     yaml_node_t preset_value[MAX_PRESET_KEYS]; /* the material being read */
     size_t history_line;
-    size_t grains_line;                        /* where the grains section starts */                       /* where the temperature history starts */
+    size_t grains_line;                        /* where the grains section starts */
+    size_t integration_line;                   /* fluid.integration, or where the fluid section starts */
 } parser;
 
 /* One map being read: its keys found so far and the struct they fill. */
@@ -1767,10 +1783,61 @@ static int check_contact_angles(parser *p)
     return 0;
 }
 
+/* The two-step Verlet scheme is stable to a smaller step than the
+ * leapfrog's: a mode of frequency omega needs omega dt < 1 (the leapfrog
+ * omega dt < 2), and the fastest acoustic mode of the particles comes near
+ * that limit at the leapfrog's CFL of 0.25 (the 2D dam break at dx = 0.01 m
+ * blows up at 0.25 and runs at 0.2, DualSPHysics' default). With verlet the
+ * CFL defaults to VERLET_MAX_CFL and may not exceed it. */
+#define VERLET_MAX_CFL 0.2
+
+static int finish_verlet_cfl(parser *p, const scope *sc)
+{
+    amsph_fluid_settings *f = &p->c->fluid;
+    if (f->integration != INTEGRATION_VERLET)
+        return 0;
+    if (!found(sc, "cfl"))
+        f->cfl = VERLET_MAX_CFL;
+    else if (f->cfl > VERLET_MAX_CFL)
+        return fail(p, line_of(found(sc, "cfl")),
+                    "'fluid.cfl' is %g; with 'integration: verlet' it must be at most %g (the two-step scheme's "
+                    "stability limit, omega dt < 1, is half the leapfrog's)",
+                    f->cfl, VERLET_MAX_CFL);
+    return 0;
+}
+
+/* The Verlet scheme (fluid.integration: verlet) takes the density and the
+ * acceleration from one pass at the same state, so nothing may need a
+ * neighbour's Gamma of that state (the renormalised pressure form) or a
+ * smoothing length from the new density; and it is built for the fluid
+ * module alone: the other modules' rates, shifting and the damping follow
+ * the leapfrog's half steps. */
+static int check_verlet(parser *p)
+{
+    const amsph_case *c = p->c;
+    const amsph_fluid_settings *f = &c->fluid;
+    if (f->integration != INTEGRATION_VERLET)
+        return 0;
+    const char *clash = c->thermal.enabled                       ? "a 'thermal:' section"
+                        : c->surface.enabled                     ? "a 'surface:' section"
+                        : c->grains.enabled                      ? "a 'grains:' section"
+                        : c->temperature_history.enabled         ? "a 'temperature_history:' section"
+                        : f->pressure_gradient != PRESSURE_SYMMETRIC ? "a pressure_gradient other than 'symmetric'"
+                        : f->smoothing_length != SMOOTHING_FIXED ? "'smoothing_length: volume'"
+                        : f->shifting > 0                        ? "'shifting'"
+                        : f->damping_rate > 0                    ? "'damping_rate'"
+                                                                 : NULL;
+    return clash ? fail(p, p->integration_line,
+                        "'fluid.integration: verlet' serves the fluid module alone with "
+                        "'pressure_gradient: symmetric', and this case has %s; use 'integration: leapfrog'",
+                        clash)
+                 : 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p)
 {
-    if (finish_grains(p) || check_gas(p) || check_contact_angles(p))
+    if (finish_grains(p) || check_gas(p) || check_contact_angles(p) || check_verlet(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
@@ -1960,7 +2027,8 @@ static int finish_scope(parser *p, const scope *sc)
     switch (sc->section) {
     case SEC_FLUID:
         p->c->fluid.enabled = 1;
-        return 0;
+        p->integration_line = line_of(found(sc, "integration") ? found(sc, "integration") : sc->map);
+        return finish_verlet_cfl(p, sc);
     case SEC_BARRIER:
         return finish_barrier(p, sc);
     case SEC_THERMAL:

@@ -166,6 +166,8 @@ typedef struct {
     double shifting;            /* particle shifting coefficient A (D = A h |u| dt), default 0: off */
     int smoothing_length;       /* SMOOTHING_*, default SMOOTHING_FIXED */
     double max_smoothing_ratio; /* SMOOTHING_VOLUME: the largest h / h0 the grid serves, default 1.1 */
+    int integration;            /* INTEGRATION_*, default INTEGRATION_LEAPFROG */
+    int verlet_steps;           /* INTEGRATION_VERLET: every this many steps one is an Euler step, default 40 */
     /* barrier forces of too-close pairs (Fuchs et al. 2022 Eq. 34), on with a
      * `barrier:` section; 2D: per metre of depth */
     double barrier_stiffness;   /* k_b, kg/s^2 (2D: kg/(m s^2)); 0: off */

@@ -64,6 +64,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->barrier_damping = (amsph_real)f->barrier_damping;
     p->barrier_distance = (amsph_real)f->barrier_distance;
     p->smoothing_length = f->smoothing_length;
+    p->one_pass = f->integration == INTEGRATION_VERLET;
     p->h_max = (amsph_real)(amsph_fluid_max_smoothing_ratio(&s->config) * s->h);
     s->lightest_fluid_mass = lightest_fluid_mass(h);
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
@@ -73,6 +74,10 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_GAS_WALL_PRESSURE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_SHEPARD));
+    if (p->one_pass) { /* the state a step before, for the Verlet scheme */
+        AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_VELOCITY_PREVIOUS));
+        AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_PREVIOUS));
+    }
     /* liquid until the thermal module says otherwise (it sets the field) */
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_LIQUID_FRACTION));
     for (int i = 0; i < h->n; ++i)
@@ -188,13 +193,15 @@ int amsph_fluid_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_WALL_VELOCITY)));
     return AMSPH_LAUNCH(b, "fluid_forces", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
-                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_PRESSURE),
+                        field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_REFERENCE_DENSITY),
+                        field(s, AMSPH_FIELD_PRESSURE),
                         field(s, AMSPH_FIELD_GAS_WALL_PRESSURE), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_SHEPARD),
                         field(s, AMSPH_FIELD_LIQUID_FRACTION), amsph_fluid_smoothing_length(s),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
-                        field(s, AMSPH_FIELD_ACCELERATION));
+                        field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_DENSITY_RATE),
+                        field(s, AMSPH_FIELD_SHEPARD), amsph_arg_buffer(s->closest));
 }
 
 int amsph_fluid_shift(amsph_sim *s, double dt)

@@ -30,6 +30,8 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(LIQUID_FRACTION, "liquid_fraction", AMSPH_TYPE_REAL, 1, "1", AMSPH_FIELD_OUTPUT)             \
     X(DENSITY_RATE, "density_rate", AMSPH_TYPE_REAL, 1, "kg/(m^3 s)", 0)                           \
     X(SHEPARD, "shepard", AMSPH_TYPE_REAL, 1, "1", 0)                                              \
+    X(VELOCITY_PREVIOUS, "velocity_previous", AMSPH_TYPE_REAL, 3, "m/s", 0)                      \
+    X(DENSITY_PREVIOUS, "density_previous", AMSPH_TYPE_REAL, 1, "kg/m^3", 0)                       \
     X(SMOOTHING_LENGTH, "smoothing_length", AMSPH_TYPE_REAL, 1, "m", AMSPH_FIELD_OUTPUT)           \
     X(WALL_VELOCITY, "wall_velocity", AMSPH_TYPE_REAL, 3, "m/s", 0)                               \
     X(GAS_WALL_PRESSURE, "gas_wall_pressure", AMSPH_TYPE_REAL, 1, "Pa", 0)                         \

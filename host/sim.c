@@ -97,7 +97,7 @@ static int upload_materials(amsph_sim *s)
  * particle, from the state after the drift. */
 static int compute_rates(amsph_sim *s, double dt)
 {
-    if (s->config.fluid.enabled) {
+    if (s->config.fluid.enabled && !s->fluid.one_pass) {
         AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_DENSITY, NULL));
         AMSPH_CHECK(amsph_fluid_density(s, dt));
     }
@@ -412,11 +412,11 @@ static int kick(amsph_sim *s, double half_dt)
     return s->config.grains.enabled ? amsph_grains_kick(s, half_dt) : 0;
 }
 
-int amsph_sim_step(amsph_sim *s, double dt)
+/* Kick-drift-kick (Russell 2018 Eq. 3.55): the rates after the drift, the
+ * density advanced with them (fluid.integration: leapfrog). */
+static int leapfrog_advance(amsph_sim *s, double dt)
 {
     amsph_particles *p = &s->particles;
-    amsph_phase outside;
-    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
     AMSPH_CHECK(kick(s, 0.5 * dt));
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "drift", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
@@ -437,8 +437,37 @@ int amsph_sim_step(amsph_sim *s, double dt)
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(p->n),
                                  amsph_arg_real(exp(-s->config.fluid.damping_rate * dt)),
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY])));
-    if (s->config.fluid.shifting > 0.0)
-        AMSPH_CHECK(amsph_fluid_shift(s, dt));
+    return s->config.fluid.shifting > 0.0 ? amsph_fluid_shift(s, dt) : 0;
+}
+
+/* The Verlet scheme (fluid.integration: verlet; kernels/integrate.cl
+ * verlet_update) from the rates of the state it starts from, then the
+ * rates of the new state in one neighbour pass. The difference spans this
+ * step and the one before (s->dt). */
+static int verlet_advance(amsph_sim *s, double dt)
+{
+    amsph_particles *p = &s->particles;
+    const int euler = s->step % s->config.fluid.verlet_steps == 0;
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "verlet_update", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY_RATE]), amsph_arg_buffer(s->closest),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_REFERENCE_DENSITY]), amsph_arg_int(p->n),
+                             amsph_arg_real(dt), amsph_arg_real(dt + s->dt), amsph_arg_int(euler),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY_PREVIOUS]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY]),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY_PREVIOUS])));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
+    AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
+    return compute_rates(s, dt);
+}
+
+int amsph_sim_step(amsph_sim *s, double dt)
+{
+    amsph_phase outside;
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
+    AMSPH_CHECK(s->fluid.one_pass ? verlet_advance(s, dt) : leapfrog_advance(s, dt));
     s->time += dt;
     s->dt = dt;
     ++s->step;

@@ -130,8 +130,10 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
             real all_w = REAL(0.0);
             const smoothing_scale scale = smoothing_scale_of(p.h);
             /* Gamma = 0: continuity found no fluid within the support at these
-             * positions, and the sums stay 0 */
-            if (gamma[a] > REAL(0.0)) {
+             * positions, and the sums stay 0 (with p.one_pass no continuity
+             * pass ran: look) */
+            if ((p.one_pass || gamma[a] > REAL(0.0)) &&
+                !grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES)) {
                 FOR_EACH_BODY_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
                 {
                     if (kind[b] == KIND_FLUID) {
@@ -190,19 +192,90 @@ static inline real density_diffusion_pair(real q_a, real q_b, real r_dot_grad, r
 /* Are two materials of the same phase (both gas, or both not)? Density
  * diffusion acts within a phase: across a liquid-gas interface the
  * departures rho - rho0 of equal pressures differ by the ratio of the
- * phases' c0^2, and diffusing them would carry mass across it. */
-static inline int same_phase(GLOBAL const real *materials, int mat_a, int mat_b)
+ * phases' c0^2, and diffusing them would carry mass across it. A gas needs
+ * the multiphase pressure form (case.c), so without it every pair is. */
+static inline int same_phase(GLOBAL const real *materials, const fluid_params *p, int mat_a, int mat_b)
 {
-    return material_is_gas(materials, mat_a) == material_is_gas(materials, mat_b);
+    return p->pressure_gradient != PRESSURE_MULTIPHASE ||
+           material_is_gas(materials, mat_a) == material_is_gas(materials, mat_b);
 }
 
-/* The sums of continuity over the neighbours of particle a in the sets
- * first_set .. last_set (GRID_SET_*), added to sums. */
+/* Does the delta-SPH term diffuse rho - rho0 (Russell, Fourtakas) rather than rho? */
+static inline int diffuses_departure(const fluid_params *p)
+{
+    return p->density_diffusion == DIFFUSION_RUSSELL || p->density_diffusion == DIFFUSION_FOURTAKAS;
+}
+
+/* The sums of continuity over the neighbours of a particle. */
 typedef struct {
     real shepard, drho, diffusion, nearest;
     int fluid_near; /* a fluid particle other than a lies within the support */
 } continuity_sums;
 
+/* What the continuity sums need of particle a. */
+typedef struct {
+    int fluid, material;
+    real rho, q;           /* q: the diffused quantity (density_diffusion_pair) */
+    real h;                /* particle_smoothing_length */
+    real u[3];
+    smoothing_scale scale; /* of W at h0 */
+} continuity_side;
+
+static inline continuity_side continuity_side_of(int a, GLOBAL const real *velocity, GLOBAL const real *density,
+                                                 GLOBAL const real *reference_density,
+                                                 GLOBAL const real *smoothing_length, GLOBAL const int *kind,
+                                                 GLOBAL const int *material, const fluid_params *p)
+{
+    continuity_side s;
+    s.fluid = kind[a] == KIND_FLUID;
+    s.material = material[a];
+    s.rho = density[a];
+    s.q = s.rho - (diffuses_departure(p) ? reference_density[a] : REAL(0.0));
+    s.h = particle_smoothing_length(smoothing_length, a, p);
+    s.scale = smoothing_scale_of(p->h);
+    for (int d = 0; d < 3; ++d)
+        s.u[d] = velocity[3 * a + d];
+    return s;
+}
+
+/* The terms of neighbour b (b = a too) at r_ab = r_a - r_b, |r_ab|^2 = r2
+ * within the support, in the continuity sums of particle a (its side s_a). */
+PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, const real r_ab[3], real r2,
+                                     GLOBAL const real *velocity, GLOBAL const real *density,
+                                     GLOBAL const real *reference_density, GLOBAL const real *smoothing_length,
+                                     GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
+                                     GLOBAL const real *materials, const fluid_params *p, continuity_sums *sums)
+{
+    const real r = sqrt(r2);
+    const real v_b = mass[b] / density[b];
+    const smoothing_scale scale_ab =
+        pair_smoothing_scale(&s_a->scale, s_a->h, particle_smoothing_length(smoothing_length, b, p), p);
+    sums->shepard += smoothing_w_at(&scale_ab, r) * v_b;
+    sums->fluid_near |= b != a && kind[b] == KIND_FLUID;
+    if (!s_a->fluid || b == a)
+        return;
+    sums->nearest = r < sums->nearest ? r : sums->nearest; /* fmin, without a call to libm in C */
+    const real f = smoothing_grad_factor_at(&scale_ab, r); /* grad_a W_ab = f r_ab */
+    real u_ab[3];
+    for (int d = 0; d < 3; ++d)
+        u_ab[d] = s_a->u[d] - velocity[3 * b + d];
+    sums->drho += s_a->rho * f * dot3(u_ab, r_ab) * v_b;
+    if (kind[b] == KIND_FLUID && p->density_diffusion != DIFFUSION_NONE &&
+        same_phase(materials, p, s_a->material, material[b])) {
+        const real q_b = density[b] - (diffuses_departure(p) ? reference_density[b] : REAL(0.0));
+        real dq = s_a->q - q_b;
+        if (p->density_diffusion == DIFFUSION_FOURTAKAS) {
+            /* minus the hydrostatic density difference of the pair,
+             * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
+            const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
+            dq -= reference_density[b] * dot3(p->gravity, r_ab) / (c0_b * c0_b);
+        }
+        sums->diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
+    }
+}
+
+/* The sums of continuity over the neighbours of particle a in the sets
+ * first_set .. last_set (GRID_SET_*), added to sums. */
 static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBAL const real *position,
                                        GLOBAL const real *velocity, GLOBAL const real *density,
                                        GLOBAL const real *reference_density, GLOBAL const real *smoothing_length,
@@ -218,13 +291,8 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
     real x_a[3];
     grid_point(position, a, x_a);
     const real support = SUPPORT_OVER_H * p->h_max;
-    const real h_a = particle_smoothing_length(smoothing_length, a, p);
-    const int fluid_a = kind[a] == KIND_FLUID;
-    const int mat_a = material[a];
-    const real rho_a = density[a];
-    const int shifted = p->density_diffusion == DIFFUSION_RUSSELL || p->density_diffusion == DIFFUSION_FOURTAKAS;
-    const real q_a = rho_a - (shifted ? reference_density[a] : REAL(0.0));
-    const smoothing_scale scale = smoothing_scale_of(p->h);
+    const continuity_side s_a =
+        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, p);
     FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, support, first_set, last_set)
     {
         real r_ab[3];
@@ -232,34 +300,18 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
         const real r2 = dot3(r_ab, r_ab);
         if (r2 >= support * support)
             continue; /* W = 0: 3 candidates in 5 in 3D, 2 in 5 in 2D */
-        const real r = sqrt(r2);
-        const real v_b = mass[b] / density[b];
-        const smoothing_scale scale_ab =
-            pair_smoothing_scale(&scale, h_a, particle_smoothing_length(smoothing_length, b, p), p);
-        sums.shepard += smoothing_w_at(&scale_ab, r) * v_b;
-        sums.fluid_near |= b != a && kind[b] == KIND_FLUID;
-        if (fluid_a && b != a) {
-            sums.nearest = r < sums.nearest ? r : sums.nearest; /* fmin, without a call to libm in C */
-            const real f = smoothing_grad_factor_at(&scale_ab, r); /* grad_a W_ab = f r_ab */
-            real u_ab[3];
-            for (int d = 0; d < 3; ++d)
-                u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
-            sums.drho += rho_a * f * dot3(u_ab, r_ab) * v_b;
-            if (kind[b] == KIND_FLUID && p->density_diffusion != DIFFUSION_NONE &&
-                same_phase(materials, mat_a, material[b])) {
-                const real q_b = density[b] - (shifted ? reference_density[b] : REAL(0.0));
-                real dq = q_a - q_b;
-                if (p->density_diffusion == DIFFUSION_FOURTAKAS) {
-                    /* minus the hydrostatic density difference of the pair,
-                     * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
-                    const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
-                    dq -= reference_density[b] * dot3(p->gravity, r_ab) / (c0_b * c0_b);
-                }
-                sums.diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
-            }
-        }
+        add_continuity_pair(&s_a, a, b, r_ab, r2, velocity, density, reference_density, smoothing_length, mass,
+                            kind, material, materials, p, &sums);
     }
     *sums_io = sums;
+}
+
+/* drho_a/dt of continuity_sums (continuity, below). */
+static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL const real *smoothing_length,
+                                   GLOBAL const int *material, GLOBAL const real *materials, const fluid_params *p)
+{
+    return sums->drho + p->delta * particle_smoothing_length(smoothing_length, a, p) *
+                            material_value(materials, material[a], MATERIAL_SOUND_SPEED) * sums->diffusion;
 }
 
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
@@ -291,36 +343,45 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     {
         const int fluid_a = kind[a] == KIND_FLUID;
         continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0};
-        add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
-                            density, reference_density, smoothing_length, mass, kind, material, cell, &g, cell_start,
-                            materials, &p, &sums);
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        if (fluid_a || !grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES))
+            add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
+                                density, reference_density, smoothing_length, mass, kind, material, cell, &g,
+                                cell_start, materials, &p, &sums);
         if (!fluid_a && sums.fluid_near && p.pressure_gradient == PRESSURE_RENORMALISED)
             add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
                                 smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
-        density_rate[a] = fluid_a ? sums.drho + p.delta * particle_smoothing_length(smoothing_length, a, &p) *
-                                                    material_value(materials, material[a], MATERIAL_SOUND_SPEED) *
-                                                    sums.diffusion
-                                  : REAL(0.0);
+        density_rate[a] = fluid_a ? continuity_rate(&sums, a, smoothing_length, material, materials, &p) : REAL(0.0);
         closest[a] = sums.nearest;
     }
 }
 
 /* Acceleration of the fluid particles: gravity + the pair forces of
- * kernels/fluid_pair.h. */
+ * kernels/fluid_pair.h. With p.one_pass (fluid.integration: verlet) the same
+ * pass over the neighbours also evaluates the continuity and Shepard sums
+ * of the fluid particles at this state (continuity, above; the velocity of
+ * the state, not of a half step) into density_rate, gamma and closest, and
+ * writes 0, 0 and NO_NEIGHBOUR for the other particles; no force reads
+ * gamma then (the symmetric pressure form). Without it those three are not
+ * touched. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
+                         GLOBAL const real *reference_density,
                          GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
                          GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
                          GLOBAL const real *smoothing_length,
                          GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                         GLOBAL real *acceleration)
+                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *shepard,
+                         GLOBAL real *closest)
 {
     FOR_EACH_ITEM(a, n)
     {
         real acc[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0};
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
@@ -329,20 +390,36 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
             const real support = SUPPORT_OVER_H * p.h_max;
             const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
                                                            smoothing_length, material, materials, &p);
+            const continuity_side c_a =
+                continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, &p);
+            if (p.one_pass) {
+                const real self[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+                add_continuity_pair(&c_a, a, a, self, REAL(0.0), velocity, density, reference_density,
+                                    smoothing_length, mass, kind, material, materials, &p, &sums);
+            }
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
             {
                 real r_ab[3], r2;
-                if (b != a && grid_pair_within(&run, position, b, support * support, r_ab, &r2))
-                    fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
-                                            gas_wall_pressure, mass,
-                                            gamma, liquid_fraction, smoothing_length, kind, material, materials, &p,
-                                            acc);
+                if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
+                    continue;
+                fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
+                                        gas_wall_pressure, mass, gamma, liquid_fraction, smoothing_length, kind,
+                                        material, materials, &p, acc);
+                if (p.one_pass)
+                    add_continuity_pair(&c_a, a, b, r_ab, r2, velocity, density, reference_density,
+                                        smoothing_length, mass, kind, material, materials, &p, &sums);
             }
             for (int d = 0; d < 3; ++d)
                 acc[d] += p.gravity[d];
         }
         for (int d = 0; d < 3; ++d)
             acceleration[3 * a + d] = acc[d];
+        if (p.one_pass) {
+            const int fluid_a = kind[a] == KIND_FLUID;
+            shepard[a] = fluid_a ? sums.shepard : REAL(0.0);
+            density_rate[a] = fluid_a ? continuity_rate(&sums, a, smoothing_length, material, materials, &p) : REAL(0.0);
+            closest[a] = sums.nearest;
+        }
     }
 }
 

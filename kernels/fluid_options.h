@@ -20,6 +20,9 @@
 #define SMOOTHING_FIXED 0  /* h = h_over_dx dx for every particle */
 #define SMOOTHING_VOLUME 1 /* fluid particles: h_a = h0 (V_a / V0)^(1/d) (Russell 2018 Eq. 3.54) */
 
+#define INTEGRATION_LEAPFROG 0 /* kick-drift-kick, density after the drift (Russell 2018 Eq. 3.55) */
+#define INTEGRATION_VERLET 1   /* Verlet (1967) as DualSPHysics has it: one neighbour pass per step */
+
 /* The nearest-neighbour distance (the `closest` buffer) of a fluid particle
  * with no other particle within its support: a lone particle. */
 #define NO_NEIGHBOUR REAL(1e30)

@@ -30,6 +30,8 @@ typedef struct {
     AMSPH_SHARED_REAL barrier_stiffness;   /* k_b of Fuchs et al. 2022 Eq. 34; 0: off */
     AMSPH_SHARED_REAL barrier_damping;     /* d_b */
     AMSPH_SHARED_REAL barrier_distance;    /* r_b, m */
+    int one_pass;                          /* 1: fluid_forces evaluates the continuity sums too
+                                              (fluid.integration: verlet) */
 } fluid_params;
 
 #endif

@@ -73,6 +73,44 @@ KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_r
     }
 }
 
+/* One step of the Verlet scheme (Verlet 1967; as DualSPHysics has it,
+ * Crespo et al. 2015 Sec. 2.7.1), from the rates a^n and drho^n/dt of one
+ * neighbour pass at the state n (fluid_forces with p.one_pass):
+ *   r^(n+1)   = r^n + dt v^n + dt^2 a^n / 2
+ *   v^(n+1)   = v^(n-1) + span a^n,      rho^(n+1) = rho^(n-1) + span drho^n/dt
+ * span = t^(n+1) - t^(n-1), the two steps the difference spans (2 dt where
+ * the step does not change); with `euler` (one step in fluid.verlet_steps)
+ *   v^(n+1)   = v^n + dt a^n,            rho^(n+1) = rho^n + dt drho^n/dt,
+ * which joins the two interleaved sequences of the scheme again. The state
+ * n becomes the previous one. A lone fluid particle takes rho0(T)
+ * (advance_density). Walls and fixed solids move with their velocity;
+ * grains are not in such a case (case.c). */
+KERNEL void verlet_update(GLOBAL const int *kind, GLOBAL const real *acceleration, GLOBAL const real *density_rate,
+                          GLOBAL const real *closest, GLOBAL const real *reference_density, int n, real dt,
+                          real span, int euler, GLOBAL real *position, GLOBAL real *velocity,
+                          GLOBAL real *velocity_previous, GLOBAL real *density, GLOBAL real *density_previous)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        if (kind[i] == KIND_FLUID) {
+            for (int d = 0; d < AMSPH_DIM; ++d) {
+                const real u = velocity[3 * i + d], a = acceleration[3 * i + d];
+                position[3 * i + d] += dt * u + REAL(0.5) * dt * dt * a;
+                velocity[3 * i + d] = euler ? u + dt * a : velocity_previous[3 * i + d] + span * a;
+                velocity_previous[3 * i + d] = u;
+            }
+            const real rho = density[i];
+            density[i] = closest[i] == NO_NEIGHBOUR ? reference_density[i]
+                         : euler                    ? rho + dt * density_rate[i]
+                                                    : density_previous[i] + span * density_rate[i];
+            density_previous[i] = rho;
+        } else {
+            for (int d = 0; d < AMSPH_DIM; ++d)
+                position[3 * i + d] += dt * velocity[3 * i + d];
+        }
+    }
+}
+
 /* r += dt v, except for grain particles, which move with their grain
  * (grain_drift, kernels/grains.cl). */
 KERNEL void drift(GLOBAL const int *kind, GLOBAL const real *velocity, int n, real dt, GLOBAL real *position)

@@ -231,6 +231,30 @@ static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_
     FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius, GRID_SET_BODIES, \
                           GRID_SET_BODIES)
 
+/* 1 when no particle of set `set` (GRID_SET_*) lies in the cells within
+ * `reach` of cell cc (a box of (2 reach + 1)^d cells, cut at the grid's
+ * faces): one comparison per row of cells, against the pair loop's set-up
+ * of its span, for the walls far from the fluid, whose loops over the
+ * non-wall set would find nothing. 0 with a periodic axis (not tested). */
+static inline int grid_set_empty_near(const grid_geometry *g, GLOBAL const int *cell_start, const int cc[3],
+                                      int reach, int set)
+{
+    if (g->periodic[0] || g->periodic[1] || g->periodic[2])
+        return 0;
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+        lo[d] = d < AMSPH_DIM && cc[d] > reach ? cc[d] - reach : 0;
+        hi[d] = d >= AMSPH_DIM ? 0 : cc[d] + reach < g->ncell[d] ? cc[d] + reach : g->ncell[d] - 1;
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y) {
+            const int row = grid_row_bucket(g, (z * g->ncell[1] + y) * g->ncell[0], set);
+            if (cell_start[row + lo[0]] != cell_start[row + hi[0] + 1])
+                return 0;
+        }
+    return 1;
+}
+
 /* r_ab = r_a - r_b for the loop's point as r_a and the image of b next to it. */
 static inline void grid_displacement(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])
 {

@@ -195,7 +195,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, smoothing_length, max_smoothing_ratio, barrier)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -337,6 +337,23 @@ static const bad_case bad_cases[] = {
      NAME ":9: material 'water' has a 'contact_angle', which needs the surface module (a 'surface:' section)"},
     {"wetting transition range not positive", SURFACE_MAT(", wetting_transition_range: 0") "fluid: {}\nsurface: {}\n",
      NAME ":9: 'materials[0].wetting_transition_range' must be > 0, got 0"},
+    {"fluid integration unknown", SURFACE_MAT("") "fluid: {integration: euler}\n",
+     NAME ":16: 'fluid.integration' must be one of leapfrog, verlet; got 'euler'"},
+    {"verlet with the renormalised pressure force", SURFACE_MAT("") "fluid: {integration: verlet}\n",
+     NAME ":16: 'fluid.integration: verlet' serves the fluid module alone with 'pressure_gradient: symmetric', "
+          "and this case has a pressure_gradient other than 'symmetric'; use 'integration: leapfrog'"},
+    {"verlet with surface tension",
+     SURFACE_MAT("") "fluid:\n  pressure_gradient: symmetric\n  integration: verlet\nsurface: {}\n",
+     NAME ":18: 'fluid.integration: verlet' serves the fluid module alone with 'pressure_gradient: symmetric', "
+          "and this case has a 'surface:' section; use 'integration: leapfrog'"},
+    {"verlet with shifting", SURFACE_MAT("") "fluid: {integration: verlet, pressure_gradient: symmetric, shifting: 2}\n",
+     NAME ":16: 'fluid.integration: verlet' serves the fluid module alone with 'pressure_gradient: symmetric', "
+          "and this case has 'shifting'; use 'integration: leapfrog'"},
+    {"verlet above its CFL", SURFACE_MAT("") "fluid: {integration: verlet, pressure_gradient: symmetric, cfl: 0.25}\n",
+     NAME ":16: 'fluid.cfl' is 0.25; with 'integration: verlet' it must be at most 0.2 (the two-step scheme's "
+          "stability limit, omega dt < 1, is half the leapfrog's)"},
+    {"verlet steps zero", SURFACE_MAT("") "fluid: {verlet_steps: 0}\n",
+     NAME ":16: 'fluid.verlet_steps' must be >= 1, got 0"},
     {"thermal integration unknown", BASE2 "thermal: {integration: implicit}\n",
      NAME ":17: 'thermal.integration' must be one of explicit, midpoint; got 'implicit'"},
 
@@ -915,6 +932,17 @@ static const char gas2d[] = HEAD2 "fluid:\n  pressure_gradient: multiphase\n"
                             "geometry:\n  - {shape: circle, kind: fluid, material: water, center: [0.5, 0.5], radius: 0.2}\n"
                             "  - {shape: box, kind: fluid, material: air, min: [0, 0], max: [1, 1], fill: true}\n";
 
+/* The Verlet scheme: its CFL defaults to 0.2, its Euler steps to one in 40. */
+static const char verlet2d[] = HEAD2 "fluid: {integration: verlet, pressure_gradient: symmetric}\n"
+                               "materials:\n  - {name: water, density: 1000, sound_speed: 10}\n" GEO_BOX;
+
+static void check_verlet2d(const amsph_case *c)
+{
+    expect(c->fluid.integration == INTEGRATION_VERLET && c->fluid.pressure_gradient == PRESSURE_SYMMETRIC,
+           "integration");
+    expect(near(c->fluid.cfl, 0.2) && c->fluid.verlet_steps == 40, "verlet defaults");
+}
+
 static void check_gas2d(const amsph_case *c)
 {
     const amsph_fluid_settings *f = &c->fluid;
@@ -941,6 +969,7 @@ static const good_case good_cases[] = {
     {"material presets", presets2d, check_presets2d},
     {"2D density table, temperature ramp", isothermal2d, check_isothermal2d},
     {"2D droplet in a gas, barrier forces", gas2d, check_gas2d},
+    {"2D Verlet, its defaults", verlet2d, check_verlet2d},
 };
 
 static void run_good_case(const char *name, const char *text, size_t len,

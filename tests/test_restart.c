@@ -50,6 +50,10 @@
 static const char *dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_HEAD;
 /* The same with the smoothing length that follows the volume (its field in the checkpoint). */
 static const char *volume_h_dambreak = "dimension: 2\nend_time: 0.4\n" DAMBREAK_WITH(", smoothing_length: volume");
+/* The same with the Verlet scheme: the state a step before (its fields) and
+ * the last step's length carry over; step 100 falls between Euler steps. */
+static const char *verlet_dambreak =
+    "dimension: 2\nend_time: 0.4\n" DAMBREAK_WITH(", integration: verlet, pressure_gradient: symmetric");
 static const char *dambreak_longer = "dimension: 2\nend_time: 0.5\n" DAMBREAK_HEAD;
 /* A 2D steel slab on a cold wall under a 1 kW beam (laser_slab_2d.yaml's
  * geometry), radiating, by implicit midpoint: it melts from step 70 on, and
@@ -561,6 +565,7 @@ int main(void)
         test_bit_identical(k, melting_slab, "slab");
         test_bit_identical(k, grain_dambreak, "grains");
         test_bit_identical(k, volume_h_dambreak, "volume_h");
+        test_bit_identical(k, verlet_dambreak, "verlet");
     }
     amsph_backend *b = testing_backend(0);
     amsph_case c;
