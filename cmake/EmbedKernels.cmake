@@ -24,6 +24,11 @@ function(amsph_embed_kernels target)
       target_compile_definitions(${lib} PRIVATE AMSPH_DIM=${dim} AMSPH_KERNEL=${kernel}
         AMSPH_DOUBLE=$<BOOL:${AMSPH_DOUBLE}> AMSPH_OMP_TABLE=amsph_omp_kernels_${dim}_${kernel})
       amsph_set_warnings(${lib})
+      # OpenCL C's math sets no errno and traps nothing: the C build of the
+      # kernels may inline sqrt and keep loops free of libm calls alike.
+      if(CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
+        target_compile_options(${lib} PRIVATE -fno-math-errno -fno-trapping-math)
+      endif()
       if(AMSPH_OPENMP)
         target_link_libraries(${lib} PRIVATE OpenMP::OpenMP_C)
       endif()
