@@ -421,8 +421,9 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
  * repels). Weighed with alpha_a, the two forces of a pair differ where |n|
  * does (a surface particle and one below it), so the liquid's momentum is
  * not kept (Fuchs: a non-conservative surface tension formulation with
- * interface viscosity): a drop wetting a free grain gained 2.5 kg m/s per m
- * in 1 s with alpha0 = 7.2 (BENCHMARKS.md, surface momentum). The pair's
+ * interface viscosity): a drop wetting a free grain swung to 22 kg m/s per
+ * m in 7 s with alpha0 = 7.2, and the binder of binder_jetting_10ms_2d
+ * drifts 53 um left by 0.1 ms (BENCHMARKS.md, surface momentum). The pair's
  * mean or geometric mean of alpha would keep it, but damped the sessile
  * cap too little (test_surface: at 60 degrees a particle still at 7.6e-3
  * and 8.4e-3 m/s after 20 s, at 120 degrees 114.0 and 114.4 degrees). Returned as the factor of
