@@ -166,11 +166,11 @@ static int grain_sums(amsph_sim *s, int recover_spin)
                         amsph_arg_int(recover_spin), amsph_arg_buffer(gs->records));
 }
 
-/* The grain particles' forces, then the grains' sums (the step's time is not needed). */
+/* The grain particles' forces (the step's time is not needed). */
 static int forces(amsph_sim *s, double unused_dt)
 {
     (void)unused_dt;
-    amsph_grains_state *gs = &s->grains;
+    const amsph_grains_state *gs = &s->grains;
     const int n = s->particles.n;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "grain_particle_forces", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_WALL_VELOCITY),
@@ -182,14 +182,26 @@ static int forces(amsph_sim *s, double unused_dt)
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
                              amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              amsph_arg_bytes(&gs->params, sizeof gs->params), field(s, AMSPH_FIELD_ACCELERATION)));
-    AMSPH_CHECK(grain_sums(s, gs->recover_spin));
-    gs->recover_spin = 0;
     return 0;
 }
 
 int amsph_grains_forces(amsph_sim *s)
 {
     return in_grains_phase(s, forces, 0.0);
+}
+
+/* The grains' sums of the forces (the step's time is not needed). */
+static int sum_forces(amsph_sim *s, double unused_dt)
+{
+    (void)unused_dt;
+    AMSPH_CHECK(grain_sums(s, s->grains.recover_spin));
+    s->grains.recover_spin = 0;
+    return 0;
+}
+
+int amsph_grains_sum_forces(amsph_sim *s)
+{
+    return in_grains_phase(s, sum_forces, 0.0);
 }
 
 int amsph_grains_recover(amsph_sim *s)

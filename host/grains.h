@@ -23,8 +23,11 @@ void amsph_grains_free(amsph_sim *s);
 int amsph_grains_kick(amsph_sim *s, double half_dt);
 /* Moves the grain particles and centres over dt (after the fluid's drift). */
 int amsph_grains_drift(amsph_sim *s, double dt);
-/* The grain particles' forces and the grains' sums (after the fluid forces). */
+/* The grain particles' forces (after the fluid forces). */
 int amsph_grains_forces(amsph_sim *s);
+/* The grains' sums of their particles' forces (after every module that
+ * adds to them: the surface module's reaction). */
+int amsph_grains_sum_forces(amsph_sim *s);
 /* The grains' sums from the particles as they are, their angular velocity
  * recovered from the particles' angular momentum. */
 int amsph_grains_recover(amsph_sim *s);

@@ -112,10 +112,11 @@ static int compute_rates(amsph_sim *s, double dt)
             AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
             AMSPH_CHECK(amsph_evaporation_recoil(s));
         }
-        if (!s->config.surface.enabled)
-            return 0;
-        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
-        return amsph_surface_forces(s);
+        if (s->config.surface.enabled) {
+            AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SURFACE, NULL));
+            AMSPH_CHECK(amsph_surface_forces(s));
+        }
+        return s->config.grains.enabled ? amsph_grains_sum_forces(s) : 0;
     }
     amsph_particles *p = &s->particles;
     const double *g = s->config.gravity;
@@ -211,6 +212,8 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 3 * sizeof(amsph_real), &s->shift));
     if (c->grains.enabled)
         AMSPH_CHECK(amsph_grains_allocate(s));
+    if (c->grains.enabled && c->surface.enabled)
+        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->contact_pull));
     return upload_materials(s);
 }
 
@@ -236,6 +239,7 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->work);
     amsph_buffer_free(s->backend, s->closest);
     amsph_buffer_free(s->backend, s->shift);
+    amsph_buffer_free(s->backend, s->contact_pull);
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);

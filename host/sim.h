@@ -93,6 +93,8 @@ typedef struct {
     amsph_buffer *work;      /* one real per particle, for reductions */
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *shift;     /* particle shifting displacements, three reals per particle (fluid.shifting) */
+    amsph_buffer *contact_pull; /* four reals per particle: the surface tension's pull and its weight
+                                   (surface with grains; kernels/surface.cl surface_contact_pull) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */

@@ -69,6 +69,35 @@ static amsph_arg temperature(amsph_sim *s)
     return field(s, s->surface.temperature ? AMSPH_FIELD_TEMPERATURE : AMSPH_FIELD_CURVATURE);
 }
 
+/* The reaction of the surface tension on the grains (kernels/surface.cl,
+ * surface_grain_reaction): the pull of the liquid on every solid particle,
+ * the sums of the pulls and of their weights, and the grains' share. */
+static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_arg cell_start, amsph_arg params)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_contact_pull", n, field(s, AMSPH_FIELD_POSITION),
+                             field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_SURFACE_SHEPARD),
+                             field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
+                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_CURVATURE),
+                             field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
+                             amsph_arg_buffer(s->materials), params, amsph_arg_buffer(s->contact_pull)));
+    double sum[4] = {0.0, 0.0, 0.0, 0.0}; /* the net pull (3) and the solids' weight */
+    for (int c = 0; c < 4; ++c) {
+        if (c >= s->config.dim && c < 3)
+            continue;
+        AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_pull_component", n, amsph_arg_buffer(s->contact_pull), amsph_arg_int(n),
+                                 amsph_arg_int(c), amsph_arg_buffer(s->work)));
+        AMSPH_CHECK(amsph_reduce_sum(b, s->work, n, &sum[c]));
+    }
+    const double per_weight = sum[3] > 0.0 ? -1.0 / sum[3] : 0.0;
+    return AMSPH_LAUNCH(b, "surface_grain_reaction", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MASS),
+                        amsph_arg_buffer(s->contact_pull), amsph_arg_int(n), amsph_arg_real(sum[0] * per_weight),
+                        amsph_arg_real(sum[1] * per_weight), amsph_arg_real(sum[2] * per_weight),
+                        field(s, AMSPH_FIELD_ACCELERATION));
+}
+
 int amsph_surface_forces(amsph_sim *s)
 {
     amsph_backend *b = s->backend;
@@ -101,7 +130,7 @@ int amsph_surface_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                              amsph_arg_buffer(s->materials), cells, amsph_arg_int(n), grid,
                              cell_start, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
-    return AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                         field(s, AMSPH_FIELD_MASS), temperature(s),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
@@ -109,7 +138,11 @@ int amsph_surface_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,
                         cell_start, amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_CURVATURE),
-                        field(s, AMSPH_FIELD_SURFACE_TENSION));
+                        field(s, AMSPH_FIELD_SURFACE_TENSION)));
+    /* with a gas the CSF force is on the liquid-gas pairs (Fuchs et al. 2022 Eq. 24) and left as it is */
+    return s->config.grains.enabled && s->surface.tension && !s->surface.gas
+               ? grain_reaction(s, cells, grid, cell_start, params)
+               : 0;
 }
 
 int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit)

@@ -10,8 +10,9 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h);
 /* Checks that the grid's cells serve the surface support (after the grid
  * is laid out). */
 int amsph_surface_check_grid(const amsph_sim *s);
-/* Adds the surface forces to the acceleration of fluid particles (after the
- * fluid forces). */
+/* Adds the surface forces to the acceleration of fluid particles, and
+ * their reaction to that of grain particles (after the fluid forces and
+ * the grain particles' forces, before the grains' sums). */
 int amsph_surface_forces(amsph_sim *s);
 /* Lowers *dt to the capillary limit 0.25 sqrt(rho h^3 / (2 pi sigma))
  * (Fuchs et al. 2022 Eq. 42; PHYSICS.md erratum 3) with the smallest

@@ -183,6 +183,15 @@ static inline int colour_material(GLOBAL const real *materials, GLOBAL const int
     return !material_is_gas(materials, material[b]);
 }
 
+/* Whether particle a takes the CSF force of surface_force: a liquid (fluid,
+ * not gas) with Gamma_a >= min_shepard. */
+static inline int takes_surface_force(GLOBAL const int *kind, GLOBAL const int *material,
+                                      GLOBAL const real *materials, GLOBAL const real *shepard,
+                                      const surface_params *p, int a)
+{
+    return kind[a] == KIND_FLUID && colour_material(materials, material, a) && shepard[a] >= p->min_shepard;
+}
+
 /* Gamma_a = sum_b V_b W_ab at h_st, over every particle of colour 1. */
 KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
                             GLOBAL const real *mass, GLOBAL const int *material, GLOBAL const int *cell,
@@ -409,8 +418,16 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
  * density, eps = INTERFACE_VISCOSITY_EPSILON; it damps the spurious flows of
  * the CSF force along the surface. Unlike Monaghan's, Eq. 31 acts on
  * receding pairs too; its sign here is the dissipative one (a closing pair
- * repels). Returned as the factor of m_b r_ab, f the kernel's
- * grad_a W_ab = f r_ab. */
+ * repels). Weighed with alpha_a, the two forces of a pair differ where |n|
+ * does (a surface particle and one below it), so the liquid's momentum is
+ * not kept (Fuchs: a non-conservative surface tension formulation with
+ * interface viscosity): a drop wetting a free grain swung to 22 kg m/s per
+ * m in 7 s with alpha0 = 7.2, and the binder of binder_jetting_10ms_2d
+ * drifts 53 um left by 0.1 ms (BENCHMARKS.md, surface momentum). The pair's
+ * mean or geometric mean of alpha would keep it, but damped the sessile
+ * cap too little (test_surface: at 60 degrees a particle still at 7.6e-3
+ * and 8.4e-3 m/s after 20 s, at 120 degrees 114.0 and 114.4 degrees). Returned as the factor of
+ * m_b r_ab, f the kernel's grad_a W_ab = f r_ab. */
 #define INTERFACE_VISCOSITY_EPSILON REAL(0.01)
 
 static inline real interface_viscosity_factor(real alpha_a, real h, real c_mean, real rho_mean, real u_dot_r,
@@ -516,7 +533,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
         const real sigma = surface_tension(materials, material[a], t_a, &d_sigma);
         curvature[a] = kappa;
         tension[a] = sigma;
-        if (kind[a] == KIND_FLUID && colour_material(materials, material, a) && shepard[a] >= p.min_shepard) {
+        if (takes_surface_force(kind, material, materials, shepard, &p, a)) {
             real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             if (p.tension)
                 for (int d = 0; d < 3; ++d)
@@ -537,6 +554,122 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
             if (alpha_a > REAL(0.0))
                 for (int d = 0; d < 3; ++d)
                     acceleration[3 * a + d] += damping[d];
+        }
+    }
+}
+
+/* The unit normal that the surface stress of particle a takes: the (turned)
+ * unit normal n^_a where it has one (psi_a > 0), else n_a / |n_a| (the CSF
+ * force acts on every liquid particle with a colour gradient); 0 without. */
+static inline void stress_normal(GLOBAL const real *normal, GLOBAL const real *unit_normal,
+                                 GLOBAL const real *normal_weight, int a, real n_hat[3])
+{
+    const real size = normal_size(normal, a);
+    for (int d = 0; d < 3; ++d)
+        n_hat[d] = normal_weight[a] > REAL(0.0) ? unit_normal[3 * a + d]
+                   : size > REAL(0.0)           ? normal[3 * a + d] / size
+                                                : REAL(0.0);
+}
+
+/* The surface tension's pull between the liquid and the solids it wets
+ * (after surface_force, which leaves sigma_a and kappa~_a in tension and
+ * curvature): pull[4 i .. 4 i + 2] gets
+ *   on a liquid a   its CSF force  F_a = -sigma_a kappa~_a V_a n_a (Russell 2018 Eq. 3.31),
+ *   on a solid r    the contact-line force of the liquid on it
+ *                   F_r = -sum_a V_a V_r T_a . grad_a W_ar,  T_a = sigma_a |n_a| (1 - n^_a n^_a),
+ * and pull[4 i + 3] its weight |F_r| (0 on a liquid). T is the capillary
+ * stress of the interface (Lafaurie et al. 1994, J. Comput. Phys. 113,
+ * Eq. 6; in SPH Hu & Adams 2006, J. Comput. Phys. 213, Eq. 18), whose
+ * divergence is the CSF force: the net CSF force on a body of liquid is the
+ * flux of T through its faces, and T vanishes off the interface band and
+ * has no flux through the free surface itself (T . n^ = 0), so what the CSF
+ * force leaves on a liquid that wets a solid is the flux of T into the
+ * solid where the surface meets it, the contact-line pull: sigma times the
+ * surface's unit conormals along its contact lines (2 sigma sin theta0 on a
+ * 2D sessile drop, which its pressure on the wetted face balances). The
+ * symmetric SPH divergence sum_b V_a V_b (T_a + T_b) . grad_a W_ab cancels
+ * pair by pair inside the liquid; its part over solid neighbours (T_r = 0)
+ * is that flux, and F_r its reaction on the solid at the contact line
+ * (Newton's third law). n^_a is the turned normal of surface_wetting, so
+ * F_r pulls at the contact angle. Solids are every particle of colour 1
+ * but fluid: grains, fixed solids and walls (the last two are held). The
+ * Marangoni force is not in the pull: its net on an open surface (the
+ * surface gradient of sigma, integrated) is left on the liquid. */
+KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real *density,
+                                 GLOBAL const real *mass, GLOBAL const int *kind,
+                                 GLOBAL const int *material, GLOBAL const real *shepard,
+                                 GLOBAL const real *normal, GLOBAL const real *unit_normal,
+                                 GLOBAL const real *normal_weight, GLOBAL const real *curvature,
+                                 GLOBAL const real *tension, GLOBAL const int *cell, int n,
+                                 grid_geometry g, GLOBAL const int *cell_start,
+                                 GLOBAL const real *materials, surface_params p, GLOBAL real *pull)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        const real v_i = mass[i] / density[i];
+        const int solid = kind[i] != KIND_FLUID && colour_material(materials, material, i);
+        if (takes_surface_force(kind, material, materials, shepard, &p, i)) {
+            for (int d = 0; d < 3; ++d)
+                force[d] = -tension[i] * curvature[i] * v_i * normal[3 * i + d];
+        } else if (solid) {
+            int cc[3];
+            grid_cell_coords(&g, cell[i], cc);
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            real x_r[3];
+            grid_point(position, i, x_r);
+            FOR_EACH_NEIGHBOUR_NEAR(a, run, &g, cc, x_r, cell_start, p.reach, support)
+            {
+                real r_ra[3], r2, n_hat[3];
+                if (!takes_surface_force(kind, material, materials, shepard, &p, a) ||
+                    !grid_pair_within(&run, position, a, support2, r_ra, &r2))
+                    continue;
+                stress_normal(normal, unit_normal, normal_weight, a, n_hat);
+                /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
+                const real share = tension[a] * normal_size(normal, a) * mass[a] / density[a] * v_i *
+                                   smoothing_grad_factor(sqrt(r2), p.h);
+                const real along = dot3(n_hat, r_ra);
+                for (int d = 0; d < 3; ++d)
+                    force[d] += share * (r_ra[d] - along * n_hat[d]);
+            }
+        }
+        for (int d = 0; d < 3; ++d)
+            pull[4 * i + d] = force[d];
+        pull[4 * i + 3] = solid ? sqrt(dot3(force, force)) : REAL(0.0);
+    }
+}
+
+/* work_i = pull[4 i + c], for a reduction. */
+KERNEL void surface_pull_component(GLOBAL const real *pull, int n, int c, GLOBAL real *work)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        work[i] = pull[4 * i + c];
+    }
+}
+
+/* The reaction of the surface tension on the grains, added to the
+ * acceleration of each grain particle r after surface_contact_pull:
+ *   a_r += (F_r + |F_r| c) / m_r,   c = -(sum_i pull_i) / (sum_r |F_r|),
+ * the sums over every particle (host/surface.c). The CSF force and its
+ * stress flux F_r (surface_contact_pull) are two discretisations of the
+ * same pull and agree to the discretisation error only: near a contact
+ * line the colour gradient |n_a| that carries T is cut short by the solid
+ * (c = 1 there too), and the flux came to 0.3 to 0.4 of the CSF force's
+ * net on a drop beside a grain and on a sessile half disc. c hands the
+ * rest of the liquid's net CSF force to the solids in proportion to their
+ * contact-line force, so that the surface tension's forces sum to zero
+ * over liquid and solids (walls and fixed solids take their share, held),
+ * while each contact line keeps the direction of its own pull. */
+KERNEL void surface_grain_reaction(GLOBAL const int *kind, GLOBAL const real *mass, GLOBAL const real *pull,
+                                   int n, real cx, real cy, real cz, GLOBAL real *acceleration)
+{
+    FOR_EACH_ITEM(r, n)
+    {
+        if (kind[r] == KIND_GRAIN) {
+            const real c[3] = {cx, cy, cz};
+            for (int d = 0; d < 3; ++d)
+                acceleration[3 * r + d] += (pull[4 * r + d] + pull[4 * r + 3] * c[d]) / mass[r];
         }
     }
 }

@@ -17,6 +17,8 @@ Prints, at the last snapshot against the first:
                 (the walls' innermost particles), and the highest of them above
                 the substrate's top (the climb);
   depth         the lowest fluid particle's height above the substrate's top;
+  drift         the fluid's mean x (its centre of mass) at the first and last snapshot,
+                and the x-momentum of the fluid and of the grains at the last;
   lone          fluid particles with fewer than 3 fluid neighbours within 1.5 dx
                 (spray and particles left on the grains).
 Lengths in um.
@@ -99,6 +101,12 @@ def main():
     climb = f", highest {(xf[on_wall, 1].max() - substrate_top) * um:.1f} um above the substrate" if on_wall.any() else ""
     print(f"walls: {np.sum(on_wall)} fluid particles within 2 dx of the side walls{climb}")
     print(f"depth: lowest fluid particle {(xf[:, 1].min() - substrate_top) * um:.1f} um above the substrate")
+    mass, u = last["mass"], last["velocity"][:, 0]
+    mean_x = [(s["mass"][s["kind"] == FLUID] * s["position"][s["kind"] == FLUID, 0]).sum()
+              / s["mass"][s["kind"] == FLUID].sum() for s in (first, last)]
+    print(f"drift: fluid mean x {mean_x[0] * um:.1f} -> {mean_x[1] * um:.1f} um; x-momentum fluid "
+          f"{(mass[fluid] * u[fluid]).sum():.3g}, grains {(mass[kind == GRAIN] * u[kind == GRAIN]).sum():.3g} kg m/s"
+          f"{' per m' if last['position'][:, 2].max() == last['position'][:, 2].min() else ''}")
     lone = within(xf, xf, 1.5 * dx) - 1 < 3
     print(f"lone: {np.sum(lone)} fluid particles with fewer than 3 fluid neighbours within 1.5 dx")
 
