@@ -213,8 +213,8 @@ typedef struct {
 #define CORRECTION_MIN_DETERMINANT REAL(0.05)
 
 /* drho_a/dt with the corrected kernel gradient L_a grad_a W_ab (Bonet & Lok
- * 1999, Comput. Methods Appl. Mech. Engrg. 180, Eq. 45; Randles & Libersky
- * 1996) in Russell's continuity (Eq. 3.14):
+ * 1999, Comput. Methods Appl. Mech. Engrg. 180, 97-115, their gradient
+ * correction; Randles & Libersky 1996) in Russell's continuity (Eq. 3.14):
  *   drho_a/dt = rho_a sum_b V_b u_ab . L_a grad_a W_ab = rho_a sum_ij (L_a)_ij D_ij,
  *   L_a = B_a^-1,  B_ij = -sum_b V_b r_ab,i (grad_a W_ab)_j,  D_ij = sum_b V_b u_ab,i (grad_a W_ab)_j,
  * which is exact for every linear velocity field, u = A x gives -rho_a tr A,
