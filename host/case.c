@@ -131,6 +131,8 @@ static const choice diffusion_choices[] = {{"none", DIFFUSION_NONE, 0},
                                            {"russell", DIFFUSION_RUSSELL, 0},
                                            {"fourtakas", DIFFUSION_FOURTAKAS, 0},
                                            {NULL, 0, 0}};
+static const choice continuity_choices[] = {
+    {"plain", CONTINUITY_PLAIN, 0}, {"corrected", CONTINUITY_CORRECTED, 0}, {NULL, 0, 0}};
 static const choice pressure_choices[] = {{"renormalised", PRESSURE_RENORMALISED, 0},
                                           {"symmetric", PRESSURE_SYMMETRIC, 0},
                                           {"multiphase", PRESSURE_MULTIPHASE, 0},
@@ -287,6 +289,10 @@ static const key_spec specs[] = {
      .doc = "delta-SPH density diffusion: none, of rho (Molteni-Colagrossi), of rho - rho0 (Russell Eq. 3.53), of rho - rho_hydrostatic (Fourtakas et al. 2019)"},
     {.section = SEC_FLUID, .key = "delta", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
      .lo = 0, .hi = 1, .def = 0.1, .offset = FLUID(delta), .doc = "delta-SPH coefficient"},
+    {.section = SEC_FLUID, .key = "continuity", .type = VT_CHOICE, .choices = continuity_choices,
+     .def = CONTINUITY_PLAIN, .offset = FLUID(continuity),
+     .doc = "Velocity divergence of the continuity equation: plain (Russell Eq. 3.14), or with the kernel "
+            "gradient corrected (Bonet & Lok 1999), exact for linear velocity fields at free surfaces too"},
     {.section = SEC_FLUID, .key = "pressure_gradient", .type = VT_CHOICE,
      .choices = pressure_choices, .def = PRESSURE_RENORMALISED, .offset = FLUID(pressure_gradient),
      .doc = "Pressure force: free-surface renormalised (Russell Eq. 3.17), plain symmetric, or "

@@ -150,6 +150,7 @@ typedef struct {
     int enabled;
     int density_diffusion;      /* DIFFUSION_*, default DIFFUSION_RUSSELL */
     double delta;               /* delta-SPH coefficient, default 0.1 */
+    int continuity;             /* CONTINUITY_*, default CONTINUITY_PLAIN */
     int pressure_gradient;      /* PRESSURE_*, default PRESSURE_RENORMALISED */
     int viscosity;              /* VISCOSITY_*, default VISCOSITY_LAMINAR */
     double artificial_alpha;    /* Monaghan alpha, default 0.02 */

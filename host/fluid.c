@@ -53,6 +53,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     for (int d = 0; d < 3; ++d)
         p->gravity[d] = (amsph_real)s->config.gravity[d];
     p->density_diffusion = f->density_diffusion;
+    p->continuity = f->continuity;
     p->pressure_gradient = f->pressure_gradient;
     p->viscosity = f->viscosity;
     p->wall_slip = f->wall_slip;

@@ -210,7 +210,59 @@ static inline int diffuses_departure(const fluid_params *p)
 typedef struct {
     real shepard, drho, diffusion, nearest;
     int fluid_near; /* a fluid particle other than a lies within the support */
+    /* CONTINUITY_CORRECTED: moment[3 i + j] = B_ij and rate[3 i + j] = D_ij
+     * of corrected_density_rate */
+    real moment[9], rate[9];
 } continuity_sums;
+
+/* Sums over no neighbour yet. */
+static inline continuity_sums continuity_sums_none(void)
+{
+    const continuity_sums none = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0, {REAL(0.0)}, {REAL(0.0)}};
+    return none;
+}
+
+/* Smallest det B_a at which continuity takes the corrected kernel gradient:
+ * 1 in the interior, 0.25 on a flat 2D surface (B_nn = 0.5), about 0.125
+ * in a 3D corner; a particle with a few neighbours on one side (spray, a
+ * film one particle thick) has B near singular and keeps the plain sum. */
+#define CORRECTION_MIN_DETERMINANT REAL(0.05)
+
+/* drho_a/dt with the corrected kernel gradient L_a grad_a W_ab (Bonet & Lok
+ * 1999, Comput. Methods Appl. Mech. Engrg. 180, 97-115, their gradient
+ * correction; Randles & Libersky 1996) in Russell's continuity (Eq. 3.14):
+ *   drho_a/dt = rho_a sum_b V_b u_ab . L_a grad_a W_ab = rho_a sum_ij (L_a)_ij D_ij,
+ *   L_a = B_a^-1,  B_ij = -sum_b V_b r_ab,i (grad_a W_ab)_j,  D_ij = sum_b V_b u_ab,i (grad_a W_ab)_j,
+ * which is exact for every linear velocity field, u = A x gives -rho_a tr A,
+ * also where a free surface truncates the support (B = I in the interior
+ * of a lattice, B_nn = 0.5 at a surface). The plain sum rho_a tr D takes
+ * tr B for d there: at a free surface continuity then sees about half of
+ * the compression or expansion normal to it, and the particles near the
+ * surface move further than their volume m / rho says until their rho
+ * follows rho0 (in the expansion cycle the band below the surface drifts
+ * from m / rho0 cycle by cycle, BENCHMARKS.md). Returns the plain sum
+ * where det B is below CORRECTION_MIN_DETERMINANT. */
+static inline real corrected_density_rate(const continuity_sums *s, real rho_a)
+{
+    real b[9];
+    for (int k = 0; k < 9; ++k)
+        b[k] = s->moment[k];
+#if AMSPH_DIM == 2
+    b[8] = REAL(1.0); /* the z row and column: the identity */
+#endif
+    const real c00 = b[4] * b[8] - b[5] * b[7], c01 = b[5] * b[6] - b[3] * b[8], c02 = b[3] * b[7] - b[4] * b[6];
+    const real det = b[0] * c00 + b[1] * c01 + b[2] * c02;
+    if (!(det >= CORRECTION_MIN_DETERMINANT))
+        return s->drho;
+    /* L = B^-1 = adj(B) / det B */
+    const real l[9] = {c00, b[2] * b[7] - b[1] * b[8], b[1] * b[5] - b[2] * b[4],
+                       c01, b[0] * b[8] - b[2] * b[6], b[2] * b[3] - b[0] * b[5],
+                       c02, b[1] * b[6] - b[0] * b[7], b[0] * b[4] - b[1] * b[3]};
+    real sum = REAL(0.0);
+    for (int k = 0; k < 9; ++k)
+        sum += l[k] * s->rate[k];
+    return rho_a * sum / det;
+}
 
 /* What the continuity sums need of particle a. */
 typedef struct {
@@ -260,6 +312,12 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
     for (int d = 0; d < 3; ++d)
         u_ab[d] = s_a->u[d] - velocity[3 * b + d];
     sums->drho += s_a->rho * f * dot3(u_ab, r_ab) * v_b;
+    if (p->continuity == CONTINUITY_CORRECTED)
+        for (int i = 0; i < AMSPH_DIM; ++i)
+            for (int j = 0; j < AMSPH_DIM; ++j) {
+                sums->moment[3 * i + j] -= v_b * r_ab[i] * f * r_ab[j];
+                sums->rate[3 * i + j] += v_b * u_ab[i] * f * r_ab[j];
+            }
     if (kind[b] == KIND_FLUID && p->density_diffusion != DIFFUSION_NONE &&
         same_phase(materials, p, s_a->material, material[b])) {
         const real q_b = density[b] - (diffuses_departure(p) ? reference_density[b] : REAL(0.0));
@@ -306,12 +364,15 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
     *sums_io = sums;
 }
 
-/* drho_a/dt of continuity_sums (continuity, below). */
-static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL const real *smoothing_length,
-                                   GLOBAL const int *material, GLOBAL const real *materials, const fluid_params *p)
+/* drho_a/dt of continuity_sums (continuity, below): the plain or the
+ * corrected sum (fluid.continuity), plus the delta-SPH term. */
+static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL const real *density,
+                                   GLOBAL const real *smoothing_length, GLOBAL const int *material,
+                                   GLOBAL const real *materials, const fluid_params *p)
 {
-    return sums->drho + p->delta * particle_smoothing_length(smoothing_length, a, p) *
-                            material_value(materials, material[a], MATERIAL_SOUND_SPEED) * sums->diffusion;
+    const real drho = p->continuity == CONTINUITY_CORRECTED ? corrected_density_rate(sums, density[a]) : sums->drho;
+    return drho + p->delta * particle_smoothing_length(smoothing_length, a, p) *
+                      material_value(materials, material[a], MATERIAL_SOUND_SPEED) * sums->diffusion;
 }
 
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
@@ -342,7 +403,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     FOR_EACH_ITEM(a, n)
     {
         const int fluid_a = kind[a] == KIND_FLUID;
-        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0};
+        continuity_sums sums = continuity_sums_none();
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
         if (fluid_a || !grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES))
@@ -353,7 +414,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
             add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
                                 smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
-        density_rate[a] = fluid_a ? continuity_rate(&sums, a, smoothing_length, material, materials, &p) : REAL(0.0);
+        density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
         closest[a] = sums.nearest;
     }
 }
@@ -381,7 +442,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
     FOR_EACH_ITEM(a, n)
     {
         real acc[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        continuity_sums sums = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0};
+        continuity_sums sums = continuity_sums_none();
         if (kind[a] == KIND_FLUID) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
@@ -417,7 +478,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
         if (p.one_pass) {
             const int fluid_a = kind[a] == KIND_FLUID;
             shepard[a] = fluid_a ? sums.shepard : REAL(0.0);
-            density_rate[a] = fluid_a ? continuity_rate(&sums, a, smoothing_length, material, materials, &p) : REAL(0.0);
+            density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
             closest[a] = sums.nearest;
         }
     }

@@ -20,6 +20,7 @@ typedef struct {
     AMSPH_SHARED_REAL artificial_alpha;    /* Monaghan's alpha */
     AMSPH_SHARED_REAL gravity[3];          /* m/s^2 */
     int density_diffusion;                 /* DIFFUSION_* */
+    int continuity;                        /* CONTINUITY_* */
     int pressure_gradient;                 /* PRESSURE_* */
     int viscosity;                         /* VISCOSITY_* */
     int wall_slip;                         /* WALL_* */

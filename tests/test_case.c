@@ -194,11 +194,13 @@ static const bad_case bad_cases[] = {
           "largest expected flow speed)"},
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
-          "pressure_gradient, viscosity, artificial_alpha, background_pressure, "
+          "continuity, pressure_gradient, viscosity, artificial_alpha, background_pressure, "
           "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
+    {"continuity unknown form", BASE2 "fluid: {continuity: renormalised}\n",
+     NAME ":17: 'fluid.continuity' must be one of plain, corrected; got 'renormalised'"},
     {"fluid cfl above 1", BASE2 "fluid: {cfl: 2}\n", NAME ":17: 'fluid.cfl' must be in (0, 1], got 2"},
     {"fluid shifting negative", BASE2 "fluid: {shifting: -1}\n",
      NAME ":17: 'fluid.shifting' must be in [0, 10], got -1"},
@@ -903,12 +905,13 @@ static void check_presets2d(const amsph_case *c)
 /* A density table and a ramp of the temperature. */
 static const char isothermal2d[] = HEAD2 "materials:\n  - name: water\n    density: [[250, 1050], [350, 950]]\n    sound_speed: 10\n" GEO_BOX
     "temperature_history: {form: ramp, reference: 300, amplitude: -20, duration: 2}\n"
-    "fluid: {smoothing_length: volume, max_smoothing_ratio: 1.25}\n";
+    "fluid: {smoothing_length: volume, max_smoothing_ratio: 1.25, continuity: corrected}\n";
 
 static void check_isothermal2d(const amsph_case *c)
 {
     expect(c->fluid.smoothing_length == SMOOTHING_VOLUME && near(c->fluid.max_smoothing_ratio, 1.25),
            "smoothing length following the volume");
+    expect(c->fluid.continuity == CONTINUITY_CORRECTED, "corrected continuity");
     const amsph_property *rho0 = &c->materials[0].density;
     expect(rho0->n == 2 && near(rho0->T[0], 250) && near(rho0->v[0], 1050) && near(rho0->T[1], 350) &&
                near(rho0->v[1], 950),
@@ -947,6 +950,7 @@ static void check_gas2d(const amsph_case *c)
 {
     const amsph_fluid_settings *f = &c->fluid;
     expect(f->pressure_gradient == PRESSURE_MULTIPHASE, "pressure_gradient");
+    expect(f->continuity == CONTINUITY_PLAIN, "continuity default");
     expect(f->smoothing_length == SMOOTHING_FIXED && near(f->max_smoothing_ratio, 1.1), "smoothing length default");
     expect(near(f->barrier_stiffness, 2) && near(f->barrier_damping, 0.5) && near(f->barrier_distance, 0.005),
            "barrier");

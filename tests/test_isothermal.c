@@ -470,13 +470,16 @@ static int run_case(int k, double dx, double end_time, int diffusion, errors *e,
     return run_measured(&c, cases[k].measure, e, record);
 }
 
-/* I1, 2D, at the thesis's spacing for one cycle: interior and band within
- * the goal (half the thesis's 0.4% and 0.8%), every cell closed. */
+/* I1, 2D, at the thesis's spacing for two cycles: interior and band within
+ * the goal (half the thesis's 0.4% and 0.8%), every cell closed. With the
+ * plain continuity sum the band drifted from cycle to cycle (0.15% after
+ * one, 0.24% after two, 0.40% after ten); the case's corrected continuity
+ * holds it (BENCHMARKS.md), and two cycles are what fits a ctest. */
 static void test_cycle(void)
 {
     errors e;
     run_record r;
-    CHECK_OK(run_case(0, 0.05, 1.0, -1, &e, &r));
+    CHECK_OK(run_case(0, 0.05, 2.0, -1, &e, &r));
     fprintf(stderr, "expansion cycle 2D: interior %.4f%%, band %.4f%% (%d particles)\n", 100 * e.worst[0],
             100 * e.worst[1], r.particles);
     CHECK(e.worst[0] < 0.002, "interior volume error %.4f%% (goal < 0.2%%)", 100 * e.worst[0]);
