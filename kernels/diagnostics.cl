@@ -49,11 +49,13 @@ KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
 
 /* Global ids of every b != a with |r_ab| < radius in the sets first_set
  * .. last_set (GRID_SET_*), up to max_neighbours; count[a] is the true
- * number even when the list is cut. */
+ * number even when the list is cut. last_set_empty[a] is what
+ * grid_set_empty_near says of set last_set around a. */
 KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
                            GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, real radius, int first_set, int last_set,
-                           int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours)
+                           int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours,
+                           GLOBAL int *last_set_empty)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -74,5 +76,6 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
             }
         }
         count[a] = found;
+        last_set_empty[a] = grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, last_set);
     }
 }

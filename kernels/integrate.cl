@@ -56,20 +56,28 @@ KERNEL void damp_velocity(GLOBAL const int *kind, int n, real factor, GLOBAL rea
     }
 }
 
-/* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl). A
- * lone particle, with no other particle within its support (NO_NEIGHBOUR),
- * takes its reference density rho0(T): continuity has nothing to expand or
- * compress it against, and a drop that small stands at the ambient
- * pressure, p = p_b. Without this a spray particle heated in a beam keeps
- * the density it left the melt with while rho0(T) falls (in the 200 W track,
- * 35% apart: the density guard), and meets the melt again in tension. */
+/* The density a fluid particle takes at the step's end: `advanced`, the
+ * scheme's update, or rho0(T) for a lone particle, with no other particle
+ * within its support (closest = NO_NEIGHBOUR): continuity has nothing to
+ * expand or compress it against, and a drop that small stands at the
+ * ambient pressure, p = p_b. Without this a spray particle heated in a beam
+ * keeps the density it left the melt with while rho0(T) falls (in the 200 W
+ * track, 35% apart: the density guard), and meets the melt again in
+ * tension. */
+static inline real density_at_step_end(real closest, real reference_density, real advanced)
+{
+    return closest == NO_NEIGHBOUR ? reference_density : advanced;
+}
+
+/* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl),
+ * density_at_step_end. */
 KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, GLOBAL const real *closest,
                             GLOBAL const real *reference_density, int n, real dt, GLOBAL real *density)
 {
     FOR_EACH_ITEM(i, n)
     {
         if (kind[i] == KIND_FLUID)
-            density[i] = closest[i] == NO_NEIGHBOUR ? reference_density[i] : density[i] + dt * density_rate[i];
+            density[i] = density_at_step_end(closest[i], reference_density[i], density[i] + dt * density_rate[i]);
     }
 }
 
@@ -82,9 +90,9 @@ KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_r
  * the step does not change); with `euler` (one step in fluid.verlet_steps)
  *   v^(n+1)   = v^n + dt a^n,            rho^(n+1) = rho^n + dt drho^n/dt,
  * which joins the two interleaved sequences of the scheme again. The state
- * n becomes the previous one. A lone fluid particle takes rho0(T)
- * (advance_density). Walls and fixed solids move with their velocity;
- * grains are not in such a case (case.c). */
+ * n becomes the previous one; the density goes through density_at_step_end.
+ * Walls and fixed solids move with their velocity; grains are not in such
+ * a case (case.c). */
 KERNEL void verlet_update(GLOBAL const int *kind, GLOBAL const real *acceleration, GLOBAL const real *density_rate,
                           GLOBAL const real *closest, GLOBAL const real *reference_density, int n, real dt,
                           real span, int euler, GLOBAL real *position, GLOBAL real *velocity,
@@ -100,9 +108,9 @@ KERNEL void verlet_update(GLOBAL const int *kind, GLOBAL const real *acceleratio
                 velocity_previous[3 * i + d] = u;
             }
             const real rho = density[i];
-            density[i] = closest[i] == NO_NEIGHBOUR ? reference_density[i]
-                         : euler                    ? rho + dt * density_rate[i]
-                                                    : density_previous[i] + span * density_rate[i];
+            density[i] = density_at_step_end(closest[i], reference_density[i],
+                                             euler ? rho + dt * density_rate[i]
+                                                   : density_previous[i] + span * density_rate[i]);
             density_previous[i] = rho;
         } else {
             for (int d = 0; d < AMSPH_DIM; ++d)

@@ -122,8 +122,7 @@ static int load_case_with(const char *file, const char *keys, amsph_case *c)
     if (!keys)
         return testing_load_case(file, c);
     char path[1024], text[8192], err[1024];
-    const char *source = getenv("AMSPH_SOURCE_DIR");
-    snprintf(path, sizeof path, "%s/cases/validation/%s", source ? source : AMSPH_SOURCE_DIR, file);
+    testing_case_path(file, path, sizeof path);
     FILE *f = fopen(path, "rb");
     CHECK(f != NULL, "cannot open %s", path);
     if (!f)
@@ -306,7 +305,7 @@ static const char *droplet_case =
     "kernel: %s\n"
     "end_time: 1\n"
     "output_interval: 1\n"
-    "fluid: {density_diffusion: none, continuity: %s}\n"
+    "fluid: {density_diffusion: none, %s}\n"
     "materials:\n"
     "  - {name: liquid, density: 1000, sound_speed: 10}\n"
     "geometry:\n"
@@ -315,14 +314,16 @@ static const char *droplet_case =
 enum { DROPLET_MAX = 1200 };
 
 /* rate_by_id[id] / (-rho tr A) - 1 of every particle of the droplet of
- * dimension dim with the continuity form `form`, on backend b (destroyed). */
-static int linear_flow_rates(int dim, const char *form, amsph_backend *b, double *error_by_id, int *n)
+ * dimension dim with the fluid settings `keys` ("continuity: corrected",
+ * ...), on backend b (destroyed): from the continuity kernel, or with
+ * `integration: verlet` from the one pass of fluid_forces. */
+static int linear_flow_rates(int dim, const char *keys, amsph_backend *b, double *error_by_id, int *n)
 {
     static const double A[3][3] = {{0.3, 0.2, -0.1}, {-0.1, -0.5, 0.15}, {0.05, -0.2, 0.4}};
     char text[2048], err[512];
     const int two = dim == 2;
     snprintf(text, sizeof text, droplet_case, dim, two ? "[-1, -1]" : "[-1, -1, -1]", two ? "[1, 1]" : "[1, 1, 1]",
-             two ? "quintic" : "wendland", form, two ? "circle" : "sphere", two ? "[0, 0]" : "[0, 0, 0]",
+             two ? "quintic" : "wendland", keys, two ? "circle" : "sphere", two ? "[0, 0]" : "[0, 0, 0]",
              two ? "0.5" : "0.2");
     amsph_case c;
     if (amsph_case_parse(text, strlen(text), "droplet.yaml", &c, err, sizeof err))
@@ -342,7 +343,7 @@ static int linear_flow_rates(int dim, const char *form, amsph_backend *b, double
     AMSPH_CHECK(amsph_particles_upload(b, &h, &s.particles));
     amsph_host_free(&h);
     AMSPH_CHECK(amsph_grid_sort(&s.grid, &s.particles));
-    AMSPH_CHECK(amsph_fluid_density(&s, 0.0));
+    AMSPH_CHECK(s.fluid.one_pass ? amsph_fluid_forces(&s) : amsph_fluid_density(&s, 0.0));
     AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
     double trace = 0.0;
     for (int d = 0; d < dim; ++d)
@@ -365,13 +366,15 @@ static int linear_flow_rates(int dim, const char *form, amsph_backend *b, double
  * so 1e-5 of the rate), in 2D and 3D, on both backends (which agree); the
  * plain sum of Russell's Eq. 3.14 is as exact in the interior but sees
  * only part of the flow normal to the surface there (B_nn = 0.5 on a
- * lattice's face): off by more than 10% at some particle. */
+ * lattice's face): off by more than 10% at some particle. The Verlet
+ * scheme's one pass (fluid_forces with p.one_pass) sums the same terms:
+ * its plain rates are continuity's, its corrected ones as exact. */
 static void test_corrected_continuity(void)
 {
     static double corrected[TESTING_BACKENDS][DROPLET_MAX], plain[DROPLET_MAX];
     for (int dim = 2; dim <= 3; ++dim) {
         int n = 0, ran[TESTING_BACKENDS] = {0, 0};
-        CHECK_OK(linear_flow_rates(dim, "plain", testing_backend(0), plain, &n));
+        CHECK_OK(linear_flow_rates(dim, "continuity: plain", testing_backend(0), plain, &n));
         double worst_plain = 0.0;
         for (int id = 0; id < n; ++id)
             worst_plain = fmax(worst_plain, fabs(plain[id]));
@@ -380,7 +383,7 @@ static void test_corrected_continuity(void)
             amsph_backend *b = testing_backend(k);
             if (!b)
                 continue;
-            CHECK_OK(linear_flow_rates(dim, "corrected", b, corrected[k], &n));
+            CHECK_OK(linear_flow_rates(dim, "continuity: corrected", b, corrected[k], &n));
             ran[k] = 1;
             double worst = 0.0;
             for (int id = 0; id < n; ++id)
@@ -396,6 +399,19 @@ static void test_corrected_continuity(void)
                 differ = fmax(differ, fabs(corrected[1][id] - corrected[0][id]));
             CHECK(differ < (AMSPH_DOUBLE ? 1e-9 : 1e-5), "%dD: the backends' corrected rates differ by %.3g", dim, differ);
         }
+        /* the Verlet scheme's one pass sums the same continuity terms */
+        static double one_pass[2][DROPLET_MAX];
+        CHECK_OK(linear_flow_rates(dim, "continuity: plain, " VERLET_KEYS, testing_backend(0), one_pass[0], &n));
+        CHECK_OK(linear_flow_rates(dim, "continuity: corrected, " VERLET_KEYS, testing_backend(0), one_pass[1], &n));
+        double plain_differ = 0.0, corrected_worst = 0.0;
+        for (int id = 0; id < n; ++id) {
+            plain_differ = fmax(plain_differ, fabs(one_pass[0][id] - plain[id]));
+            corrected_worst = fmax(corrected_worst, fabs(one_pass[1][id]));
+        }
+        CHECK(plain_differ < (AMSPH_DOUBLE ? 1e-9 : 1e-5), "%dD: the one pass's plain rates differ from continuity's by %.3g",
+              dim, plain_differ);
+        CHECK(corrected_worst < (AMSPH_DOUBLE ? 1e-9 : 1e-5), "%dD: the one pass's corrected rate is off by %.3g", dim,
+              corrected_worst);
     }
 }
 

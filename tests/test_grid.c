@@ -92,28 +92,35 @@ static int contains(const unsigned *list, int count, unsigned id)
 /* Kernel neighbour lists against all pairs, over both sets of cells and
  * over the non-wall set alone (fixture_is_wall); pairs within 1e-5 of the
  * radius are ambiguous in float and not counted either way. */
-static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3], int last_set)
+/* The loop over sets 0 .. last_set against brute force, and
+ * grid_set_empty_near of set last_set (told_empty counts its "empty"s). */
+static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3], int last_set,
+                        long long *told_empty)
 {
     const int n = f->p.n;
-    amsph_buffer *count_buf = NULL, *list_buf = NULL;
+    amsph_buffer *count_buf = NULL, *list_buf = NULL, *empty_buf = NULL;
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &count_buf));
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &empty_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * MAX_NEIGHBOURS * sizeof(unsigned), &list_buf));
     CHECK_OK(AMSPH_LAUNCH(f->b, "neighbour_list", n, amsph_arg_buffer(f->p.field[AMSPH_FIELD_POSITION]),
                           amsph_arg_buffer(f->p.field[AMSPH_FIELD_ID]), amsph_arg_buffer(f->g.cell),
                           amsph_arg_int(n), fixture_geometry(f), amsph_arg_buffer(f->g.cell_start),
                           amsph_arg_real(support), amsph_arg_int(GRID_SET_BODIES), amsph_arg_int(last_set),
                           amsph_arg_int(MAX_NEIGHBOURS),
-                          amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf)));
+                          amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf), amsph_arg_buffer(empty_buf)));
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&f->p, &h));
     int *count = malloc((size_t)n * sizeof *count);
     unsigned *list = malloc((size_t)n * MAX_NEIGHBOURS * sizeof *list);
     CHECK_OK(amsph_download(f->b, count_buf, 0, (size_t)n * sizeof *count, count));
     CHECK_OK(amsph_download(f->b, list_buf, 0, (size_t)n * MAX_NEIGHBOURS * sizeof *list, list));
+    int *empty = malloc((size_t)n * sizeof *empty);
+    CHECK_OK(amsph_download(f->b, empty_buf, 0, (size_t)n * sizeof *empty, empty));
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
     const unsigned *id = h.data[AMSPH_FIELD_ID];
-    long long missing = 0, extra = 0, pairs = 0;
+    long long missing = 0, extra = 0, pairs = 0, said_empty = 0, wrongly_empty = 0;
     for (int a = 0; a < n; ++a) {
+        said_empty += empty[a];
         CHECK(count[a] <= MAX_NEIGHBOURS, "%s: particle %u has %d neighbours", in->name, id[a], count[a]);
         const unsigned *mine = list + (size_t)a * MAX_NEIGHBOURS;
         int expected = 0, ambiguous = 0;
@@ -131,21 +138,34 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
                 missing += !listed;
             }
         }
+        /* grid_set_empty_near: "empty" must mean no particle of last_set within the support */
+        for (int b = 0; empty[a] && b < n; ++b)
+            if (b != a && fixture_is_wall((int)id[b]) == (last_set == GRID_SET_WALLS) &&
+                distance2(x, a, b, periodic) < support * support) {
+                ++wrongly_empty;
+                break;
+            }
         extra += count[a] - ambiguous - expected;
         pairs += expected;
     }
     CHECK(missing == 0 && extra == 0, "%s, %dD, sets 0-%d: %lld pairs missed, %lld extra, of %lld", in->name,
           f->dim, last_set, missing, extra, pairs);
     CHECK(pairs > n, "%s, %dD: only %lld pairs; the input does not test much", in->name, f->dim, pairs);
+    CHECK(wrongly_empty == 0, "%s, %dD, set %d: %lld particles told their neighbourhood is empty, of %lld told so",
+          in->name, f->dim, last_set, wrongly_empty, said_empty);
+    *told_empty += said_empty;
+    free(empty);
     free(count);
     free(list);
     amsph_host_free(&h);
     amsph_buffer_free(f->b, count_buf);
     amsph_buffer_free(f->b, list_buf);
+    amsph_buffer_free(f->b, empty_buf);
 }
 
 static void test_neighbours(amsph_backend *b, int dim)
 {
+    long long told_empty = 0;
     for (size_t k = 0; k < sizeof inputs / sizeof inputs[0]; ++k) {
         const input_case *in = &inputs[k];
         const int periodic[3] = {in->periodic, in->periodic && dim > 1, in->periodic && dim > 2};
@@ -157,12 +177,14 @@ static void test_neighbours(amsph_backend *b, int dim)
         CHECK(status == 0, "%s: %s", in->name, amsph_last_error());
         if (status == 0) {
             CHECK(f.p.n == in->n, "%s: %d of %d particles kept", in->name, f.p.n, in->n);
-            check_pairs(&f, in, periodic, GRID_SET_WALLS);
-            check_pairs(&f, in, periodic, GRID_SET_BODIES);
+            check_pairs(&f, in, periodic, GRID_SET_WALLS, &told_empty);
+            check_pairs(&f, in, periodic, GRID_SET_BODIES, &told_empty);
         }
         fixture_free(&f);
         free(x);
     }
+    fprintf(stderr, "%dD: grid_set_empty_near found %lld empty neighbourhoods\n", dim, told_empty);
+    CHECK(told_empty > 0, "%dD: grid_set_empty_near found no empty neighbourhood: the inputs do not test it", dim);
 }
 
 /* Fields tagged by id before the sort must still match their id after it. */

@@ -97,14 +97,20 @@ static inline amsph_backend *testing_backend(int k)
 
 #define TESTING_BACKENDS 2
 
-/* Loads cases/validation/<relative> of the source tree (a failure fails the
- * test); AMSPH_SOURCE_DIR in the environment names the tree where the tests
- * run away from the one they were built from (tools/gpu_run.sh). */
+/* The path of cases/validation/<relative> in the source tree;
+ * AMSPH_SOURCE_DIR in the environment names the tree where the tests run
+ * away from the one they were built from (tools/gpu_run.sh). */
+static inline void testing_case_path(const char *relative, char *path, size_t size)
+{
+    const char *source = getenv("AMSPH_SOURCE_DIR");
+    snprintf(path, size, "%s/cases/validation/%s", source ? source : AMSPH_SOURCE_DIR, relative);
+}
+
+/* Loads cases/validation/<relative> (a failure fails the test). */
 static inline int testing_load_case(const char *relative, amsph_case *c)
 {
     char path[1024], err[1024];
-    const char *source = getenv("AMSPH_SOURCE_DIR");
-    snprintf(path, sizeof path, "%s/cases/validation/%s", source ? source : AMSPH_SOURCE_DIR, relative);
+    testing_case_path(relative, path, sizeof path);
     const int status = amsph_case_load(path, c, err, sizeof err);
     CHECK(status == 0, "%s", err);
     return status;
