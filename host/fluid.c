@@ -202,7 +202,19 @@ int amsph_fluid_forces(amsph_sim *s)
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_DENSITY_RATE),
-                        field(s, AMSPH_FIELD_SHEPARD), amsph_arg_buffer(s->closest));
+                        amsph_arg_buffer(s->closest));
+}
+
+unsigned amsph_fluid_recomputed_fields(const amsph_sim *s)
+{
+    /* the Shepard sum: no kernel of the scheme reads it (kernels/fluid.cl fluid_forces) */
+    static const amsph_field_id recomputed[] = {AMSPH_FIELD_ACCELERATION, AMSPH_FIELD_DENSITY_RATE,
+                                                AMSPH_FIELD_PRESSURE, AMSPH_FIELD_GAS_WALL_PRESSURE,
+                                                AMSPH_FIELD_WALL_VELOCITY, AMSPH_FIELD_SHEPARD};
+    unsigned fields = 0;
+    for (size_t k = 0; s->fluid.one_pass && k < sizeof recomputed / sizeof recomputed[0]; ++k)
+        fields |= 1u << recomputed[k];
+    return fields;
 }
 
 int amsph_fluid_shift(amsph_sim *s, double dt)

@@ -17,6 +17,12 @@ int amsph_fluid_density(amsph_sim *s, double dt);
 /* Equation of state, wall states, then the acceleration of every fluid
  * particle. */
 int amsph_fluid_forces(amsph_sim *s);
+/* The fields the sort may leave unordered (amsph_grid.recomputed): under
+ * the Verlet scheme, which serves the fluid module alone, a step sorts
+ * and then computes the rates and the wall states of every particle
+ * (equation of state, wall_state, fluid_forces) before any kernel reads
+ * them; none otherwise. */
+unsigned amsph_fluid_recomputed_fields(const amsph_sim *s);
 /* Particle shifting at the end of a step of dt (fluid.shifting > 0):
  * kernels/fluid.cl shifting_displacement, added to the positions. */
 int amsph_fluid_shift(amsph_sim *s, double dt);

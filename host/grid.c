@@ -126,7 +126,7 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
                              amsph_arg_buffer(g->cell_start), amsph_arg_int(buckets),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_ID])));
     for (int f = 0; f < AMSPH_FIELD_COUNT; ++f)
-        if (p->field[f])
+        if (p->field[f] && !(g->recomputed & (1u << f)))
             AMSPH_CHECK(reorder(g, b, &p->field[f], (int)(amsph_field_bytes((amsph_field_id)f) / 4), n));
     AMSPH_CHECK(reorder(g, b, &g->cell, 1, n));
 

@@ -23,6 +23,9 @@ typedef struct {
     amsph_buffer *order;        /* sorted slot -> old index */
     amsph_buffer *chunk_total;  /* prefix-sum chunk totals */
     amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];
+    unsigned recomputed;        /* fields (bit per amsph_field_id) that the step recomputes for
+                                   every particle after the sort before any kernel reads them:
+                                   left unordered */
 } amsph_grid;
 
 /* Lays cells of side support / GRID_CELLS_PER_SUPPORT (a periodic axis's
@@ -30,8 +33,9 @@ typedef struct {
  * least 3 supports. */
 int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
                     const double hi[3], const int periodic[3], double support, int capacity);
-/* Bins and sorts the particles, reorders every present field, and drops the
- * particles that left the domain (p->n shrinks, p->removed grows). */
+/* Bins and sorts the particles, reorders every present field but those of
+ * g->recomputed, and drops the particles that left the domain (p->n
+ * shrinks, p->removed grows). */
 int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
 
 /* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl),

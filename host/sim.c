@@ -204,6 +204,7 @@ static int allocate_device_state(amsph_sim *s)
     /* cells for the largest support of the fluid's pair loops (kernels/fluid.cl) */
     AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic,
                                 amsph_fluid_max_smoothing_ratio(c) * s->support, capacity));
+    s->grid.recomputed = amsph_fluid_recomputed_fields(s);
     if (c->surface.enabled)
         AMSPH_CHECK(amsph_surface_check_grid(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));

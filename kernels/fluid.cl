@@ -302,7 +302,8 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
     const real v_b = mass[b] / density[b];
     const smoothing_scale scale_ab =
         pair_smoothing_scale(&s_a->scale, s_a->h, particle_smoothing_length(smoothing_length, b, p), p);
-    sums->shepard += smoothing_w_at(&scale_ab, r) * v_b;
+    if (!p->one_pass) /* no force reads it there (fluid_forces) */
+        sums->shepard += smoothing_w_at(&scale_ab, r) * v_b;
     sums->fluid_near |= b != a && kind[b] == KIND_FLUID;
     if (!s_a->fluid || b == a)
         return;
@@ -419,14 +420,78 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     }
 }
 
+/* The options of the fluid-only scenes (dam breaks, tanks; DualSPHysics's
+ * scheme): fixed h, the symmetric pressure force, artificial viscosity,
+ * the plain continuity sum, neither the tensile correction nor a barrier.
+ * Where a case has them, fluid_forces and wall_state hand their pair loops
+ * fluid_params_plain, a copy of the parameters with these options as
+ * constants, and the compiler folds the other options' branches out of the
+ * pair terms: one source compiled twice, as a C++ template would be. */
+static inline int fluid_options_plain(const fluid_params *p)
+{
+    return p->smoothing_length == SMOOTHING_FIXED && p->pressure_gradient == PRESSURE_SYMMETRIC &&
+           p->viscosity == VISCOSITY_ARTIFICIAL && p->continuity == CONTINUITY_PLAIN &&
+           p->tensile_correction == REAL(0.0) && p->barrier_stiffness == REAL(0.0);
+}
+
+static inline fluid_params fluid_params_plain(fluid_params p)
+{
+    p.smoothing_length = SMOOTHING_FIXED;
+    p.pressure_gradient = PRESSURE_SYMMETRIC;
+    p.viscosity = VISCOSITY_ARTIFICIAL;
+    p.continuity = CONTINUITY_PLAIN;
+    p.tensile_correction = REAL(0.0);
+    p.barrier_stiffness = REAL(0.0);
+    return p;
+}
+
+/* Acceleration of fluid particle a (fluid_forces, below), and with
+ * p->one_pass its continuity sums. */
+PAIR_INLINE void fluid_forces_of(int a, GLOBAL const real *position, GLOBAL const real *velocity,
+                                 GLOBAL const real *wall_velocity, GLOBAL const real *density,
+                                 GLOBAL const real *reference_density, GLOBAL const real *pressure,
+                                 GLOBAL const real *gas_wall_pressure, GLOBAL const real *mass,
+                                 GLOBAL const real *gamma, GLOBAL const real *liquid_fraction,
+                                 GLOBAL const real *smoothing_length, GLOBAL const int *kind,
+                                 GLOBAL const int *material, GLOBAL const int *cell, const grid_geometry *g,
+                                 GLOBAL const int *cell_start, GLOBAL const real *materials, const fluid_params *p,
+                                 real acc[3], continuity_sums *sums)
+{
+    int cc[3];
+    grid_cell_coords(g, cell[a], cc);
+    real x_a[3];
+    grid_point(position, a, x_a);
+    const real support = SUPPORT_OVER_H * p->h_max;
+    const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
+                                                   smoothing_length, material, materials, p);
+    const continuity_side c_a =
+        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, p);
+    if (p->one_pass) {
+        const real self[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        add_continuity_pair(&c_a, a, a, self, REAL(0.0), velocity, density, reference_density, smoothing_length,
+                            mass, kind, material, materials, p, sums);
+    }
+    FOR_EACH_NEIGHBOUR(b, run, g, cc, x_a, cell_start, support)
+    {
+        real r_ab[3], r2;
+        if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
+            continue;
+        fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure, gas_wall_pressure,
+                                mass, gamma, liquid_fraction, smoothing_length, kind, material, materials, p, acc);
+        if (p->one_pass)
+            add_continuity_pair(&c_a, a, b, r_ab, r2, velocity, density, reference_density, smoothing_length,
+                                mass, kind, material, materials, p, sums);
+    }
+}
+
 /* Acceleration of the fluid particles: gravity + the pair forces of
  * kernels/fluid_pair.h. With p.one_pass (fluid.integration: verlet) the same
- * pass over the neighbours also evaluates the continuity and Shepard sums
- * of the fluid particles at this state (continuity, above; the velocity of
- * the state, not of a half step) into density_rate, gamma and closest, and
- * writes 0, 0 and NO_NEIGHBOUR for the other particles; no force reads
- * gamma then (the symmetric pressure form). Without it those three are not
- * touched. */
+ * pass over the neighbours also evaluates the continuity sums of the fluid
+ * particles at this state (continuity, above; the velocity of the state,
+ * not of a half step) into density_rate and closest, and writes 0 and
+ * NO_NEIGHBOUR for the other particles. It takes no Shepard sum: no force
+ * reads Gamma under the symmetric pressure form, and wall_state finds the
+ * fluid near a wall itself. Without p.one_pass those two are not touched. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *reference_density,
@@ -436,48 +501,26 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                          GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *shepard,
-                         GLOBAL real *closest)
+                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *closest)
 {
     FOR_EACH_ITEM(a, n)
     {
         real acc[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         continuity_sums sums = continuity_sums_none();
-        if (kind[a] == KIND_FLUID) {
-            int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            real x_a[3];
-            grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h_max;
-            const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
-                                                           smoothing_length, material, materials, &p);
-            const continuity_side c_a =
-                continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, &p);
-            if (p.one_pass) {
-                const real self[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-                add_continuity_pair(&c_a, a, a, self, REAL(0.0), velocity, density, reference_density,
-                                    smoothing_length, mass, kind, material, materials, &p, &sums);
-            }
-            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-            {
-                real r_ab[3], r2;
-                if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
-                    continue;
-                fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure,
-                                        gas_wall_pressure, mass, gamma, liquid_fraction, smoothing_length, kind,
-                                        material, materials, &p, acc);
-                if (p.one_pass)
-                    add_continuity_pair(&c_a, a, b, r_ab, r2, velocity, density, reference_density,
-                                        smoothing_length, mass, kind, material, materials, &p, &sums);
-            }
-            for (int d = 0; d < 3; ++d)
-                acc[d] += p.gravity[d];
+        const int fluid_a = kind[a] == KIND_FLUID;
+        if (fluid_a && fluid_options_plain(&p)) {
+            const fluid_params plain = fluid_params_plain(p);
+            fluid_forces_of(a, position, velocity, wall_velocity, density, reference_density, pressure,
+                            gas_wall_pressure, mass, gamma, liquid_fraction, smoothing_length, kind, material, cell,
+                            &g, cell_start, materials, &plain, acc, &sums);
+        } else if (fluid_a) {
+            fluid_forces_of(a, position, velocity, wall_velocity, density, reference_density, pressure,
+                            gas_wall_pressure, mass, gamma, liquid_fraction, smoothing_length, kind, material, cell,
+                            &g, cell_start, materials, &p, acc, &sums);
         }
         for (int d = 0; d < 3; ++d)
-            acceleration[3 * a + d] = acc[d];
+            acceleration[3 * a + d] = acc[d] + (fluid_a ? p.gravity[d] : REAL(0.0));
         if (p.one_pass) {
-            const int fluid_a = kind[a] == KIND_FLUID;
-            shepard[a] = fluid_a ? sums.shepard : REAL(0.0);
             density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
             closest[a] = sums.nearest;
         }

@@ -166,7 +166,8 @@ static inline fluid_pair_side fluid_pair_side_of(int a, GLOBAL const real *veloc
     s.mu = particle_viscosity(materials, material[a], liquid_fraction[a]);
     s.c = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
     s.gamma = p->pressure_gradient == PRESSURE_RENORMALISED ? gamma[a] : REAL(1.0);
-    s.gas = material_is_gas(materials, material[a]);
+    /* a gas needs the multiphase form (host/case.c) */
+    s.gas = p->pressure_gradient == PRESSURE_MULTIPHASE && material_is_gas(materials, material[a]);
     s.h = particle_smoothing_length(smoothing_length, a, p);
     s.scale = smoothing_scale_of(p->h);
     for (int d = 0; d < 3; ++d)
@@ -219,28 +220,31 @@ PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, cons
     real u_visc[3];
     for (int d = 0; d < 3; ++d)
         u_visc[d] = s_a->u[d] - (fluid_b ? velocity[3 * b + d] : wall_velocity[3 * b + d]);
-    real visc_scalar = REAL(0.0); /* multiplies u_visc */
-    real visc_radial = REAL(0.0); /* multiplies r_ab */
-    if (fluid_b || p->wall_slip == WALL_NO_SLIP) {
-        if (p->viscosity == VISCOSITY_LAMINAR) {
-            const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
-            visc_scalar = laminar_viscosity_factor(s_a->mu, mu_b, w, f * r2, r2, p);
-        } else {
-            const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
-            visc_radial = -m_b * f *
-                          artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (s_a->c + c_b),
-                                               REAL(0.5) * (s_a->rho + rho_b), h_ab, p);
-        }
+    const int viscous = fluid_b || p->wall_slip == WALL_NO_SLIP;
+    real radial = pressure_term; /* multiplies r_ab */
+    if (viscous && p->viscosity == VISCOSITY_ARTIFICIAL) {
+        const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
+        radial += -m_b * f *
+                  artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (s_a->c + c_b),
+                                       REAL(0.5) * (s_a->rho + rho_b), h_ab, p);
     }
-    real barrier = REAL(0.0); /* multiplies r_ab */
     if (p->barrier_stiffness > REAL(0.0)) {
         real u_ab[3];
         for (int d = 0; d < 3; ++d)
             u_ab[d] = s_a->u[d] - velocity[3 * b + d];
-        barrier = barrier_factor(sqrt(r2), dot3(u_ab, r_ab), s_a->m, p);
+        radial += barrier_factor(sqrt(r2), dot3(u_ab, r_ab), s_a->m, p);
     }
-    for (int d = 0; d < 3; ++d)
-        acc[d] += (pressure_term + visc_radial + barrier) * r_ab[d] + visc_scalar * u_visc[d];
+    /* the laminar term is along u_ab, the others along r_ab; a term that is
+     * off is left out, not added as 0 (which the compiler must keep) */
+    if (viscous && p->viscosity == VISCOSITY_LAMINAR) {
+        const real mu_b = particle_viscosity(materials, mat_b, liquid_fraction[b]);
+        const real visc_scalar = laminar_viscosity_factor(s_a->mu, mu_b, w, f * r2, r2, p);
+        for (int d = 0; d < 3; ++d)
+            acc[d] += radial * r_ab[d] + visc_scalar * u_visc[d];
+    } else {
+        for (int d = 0; d < 3; ++d)
+            acc[d] += radial * r_ab[d];
+    }
 }
 
 #endif
