@@ -47,15 +47,27 @@ KERNEL void kernel_moments(GLOBAL const real *position, GLOBAL const real *mass,
     }
 }
 
+/* The ids of the particles b != a within the radius of a in the set `set`
+ * that a loop visits, folded in the order it visits them (h = 31 h + id):
+ * two loops with the same fold visit them in the same order. */
+static inline uint visit_fold(uint fold, int a, int b, real r2, real radius, GLOBAL const uint *id)
+{
+    return b != a && r2 < radius * radius ? 31u * fold + id[b] : fold;
+}
+
 /* Global ids of every b != a with |r_ab| < radius in the sets first_set
  * .. last_set (GRID_SET_*), up to max_neighbours; count[a] is the true
  * number even when the list is cut. last_set_empty[a] is what
- * grid_set_empty_near says of set last_set around a. */
+ * grid_set_empty_near says of set last_set around a. On a grid without a
+ * periodic axis, box_count[a] is the number of those of set last_set that
+ * FOR_EACH_IN_BOX finds, and box_order[a] 1 where it visits them in the
+ * order of FOR_EACH_NEIGHBOUR_IN over that set (visit_fold); -1 and 0 with
+ * a periodic axis. */
 KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
                            GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, real radius, int first_set, int last_set,
                            int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours,
-                           GLOBAL int *last_set_empty)
+                           GLOBAL int *last_set_empty, GLOBAL int *box_count, GLOBAL int *box_order)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -77,5 +89,27 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
         }
         count[a] = found;
         last_set_empty[a] = grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, last_set);
+        box_count[a] = -1;
+        box_order[a] = 0;
+        if (!grid_has_periodic_axis(&g)) {
+            uint trimmed = 0u, boxed = 0u;
+            int in_box = 0;
+            FOR_EACH_NEIGHBOUR_IN(b, run, &g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, radius, last_set, last_set)
+            {
+                real r_ab[3];
+                grid_displacement(&run, position, b, r_ab);
+                trimmed = visit_fold(trimmed, a, b, r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2], radius, id);
+            }
+            FOR_EACH_IN_BOX(b, &g, cc, cell_start, GRID_CELLS_PER_SUPPORT, last_set)
+            {
+                real r2 = REAL(0.0);
+                for (int d = 0; d < 3; ++d)
+                    r2 += (x_a[d] - position[3 * b + d]) * (x_a[d] - position[3 * b + d]);
+                in_box += b != a && r2 < radius * radius;
+                boxed = visit_fold(boxed, a, b, r2, radius, id);
+            }
+            box_count[a] = in_box;
+            box_order[a] = boxed == trimmed;
+        }
     }
 }

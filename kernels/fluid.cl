@@ -107,6 +107,84 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
  * liquid-gas interface the liquid's pressure, rho_l g dx above its own: at
  * a density ratio of 100 that pushes the gas along the wall at 100 times
  * its weight. Without a gas both are the sum over all the fluid. */
+/* The sums of wall_state over the fluid around a wall particle: [0] over
+ * the non-gas fluid, [1] over the gas. */
+typedef struct {
+    real w[2], p[2], rho_r[2][3];
+    real u[3], all_w;
+} wall_sums;
+
+/* The terms of particle b, seen from the point `point` (the wall's position
+ * less b's periodic image), in the wall's sums, if b is fluid and within
+ * the support (the wall keeps h0: scale is its kernel's scale). */
+PAIR_INLINE void add_wall_pair(wall_sums *s, int b, const real point[3], real support,
+                               const smoothing_scale *scale, GLOBAL const real *position,
+                               GLOBAL const real *velocity, GLOBAL const int *kind, GLOBAL const int *material,
+                               GLOBAL const real *smoothing_length, GLOBAL const real *density,
+                               GLOBAL const real *pressure, GLOBAL const real *materials, const fluid_params *p)
+{
+    if (kind[b] != KIND_FLUID)
+        return;
+    real r_ab[3];
+    for (int d = 0; d < 3; ++d)
+        r_ab[d] = point[d] - position[3 * b + d];
+    const real r2 = dot3(r_ab, r_ab);
+    if (r2 >= support * support)
+        return; /* W = 0 */
+    const smoothing_scale scale_ab =
+        pair_smoothing_scale(scale, p->h, particle_smoothing_length(smoothing_length, b, p), p);
+    const real w = smoothing_w_at(&scale_ab, sqrt(r2));
+    /* a gas needs the multiphase form (host/case.c) */
+    const int phase = p->pressure_gradient == PRESSURE_MULTIPHASE && material_is_gas(materials, material[b]);
+    s->w[phase] += w;
+    s->p[phase] += pressure[b] * w;
+    s->all_w += w;
+    for (int d = 0; d < 3; ++d) {
+        s->rho_r[phase][d] += density[b] * r_ab[d] * w;
+        s->u[d] += velocity[3 * b + d] * w;
+    }
+}
+
+/* The sums of wall_state for wall particle a. Gamma = 0: continuity found
+ * no fluid within the support at these positions, and the sums stay 0
+ * (with p.one_pass no continuity pass ran: look). Without a periodic axis
+ * the loop is the box of cells around the wall (FOR_EACH_IN_BOX), which
+ * for a wall is cheaper than trimming it to the support, and gives the
+ * same sums. */
+PAIR_INLINE wall_sums wall_sums_of(int a, GLOBAL const real *position, GLOBAL const real *velocity,
+                                   GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
+                                   GLOBAL const real *smoothing_length, GLOBAL const real *gamma,
+                                   const grid_geometry *g, GLOBAL const int *cell_start,
+                                   GLOBAL const real *density, GLOBAL const real *pressure,
+                                   GLOBAL const real *materials, const fluid_params *p)
+{
+    wall_sums s = {{REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0)},
+                   {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}},
+                   {REAL(0.0), REAL(0.0), REAL(0.0)}, REAL(0.0)};
+    if (!p->one_pass && !(gamma[a] > REAL(0.0)))
+        return s;
+    int cc[3];
+    grid_cell_coords(g, cell[a], cc);
+    real x_a[3];
+    grid_point(position, a, x_a);
+    const real support = SUPPORT_OVER_H * p->h_max;
+    const smoothing_scale scale = smoothing_scale_of(p->h);
+    if (!grid_has_periodic_axis(g)) {
+        FOR_EACH_IN_BOX(b, g, cc, cell_start, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES)
+        {
+            add_wall_pair(&s, b, x_a, support, &scale, position, velocity, kind, material, smoothing_length, density,
+                          pressure, materials, p);
+        }
+    } else {
+        FOR_EACH_BODY_NEIGHBOUR(b, run, g, cc, x_a, cell_start, support)
+        {
+            add_wall_pair(&s, b, run.point, support, &scale, position, velocity, kind, material, smoothing_length,
+                          density, pressure, materials, p);
+        }
+    }
+    return s;
+}
+
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        GLOBAL const real *smoothing_length, GLOBAL const real *reference_density,
@@ -118,58 +196,20 @@ KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
     FOR_EACH_ITEM(a, n)
     {
         if (kind[a] != KIND_FLUID) {
-            int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            real x_a[3];
-            grid_point(position, a, x_a);
-            const real support = SUPPORT_OVER_H * p.h_max;
-            /* [0]: the non-gas fluid, [1]: the gas */
-            real sum_w[2] = {REAL(0.0), REAL(0.0)}, sum_p[2] = {REAL(0.0), REAL(0.0)};
-            real sum_rho_r[2][3] = {{REAL(0.0), REAL(0.0), REAL(0.0)}, {REAL(0.0), REAL(0.0), REAL(0.0)}};
-            real sum_u[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-            real all_w = REAL(0.0);
-            const smoothing_scale scale = smoothing_scale_of(p.h);
-            /* Gamma = 0: continuity found no fluid within the support at these
-             * positions, and the sums stay 0 (with p.one_pass no continuity
-             * pass ran: look) */
-            if ((p.one_pass || gamma[a] > REAL(0.0)) &&
-                !grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES)) {
-                FOR_EACH_BODY_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-                {
-                    if (kind[b] == KIND_FLUID) {
-                        real r_ab[3];
-                        grid_displacement(&run, position, b, r_ab);
-                        const real r2 = dot3(r_ab, r_ab);
-                        if (r2 >= support * support)
-                            continue; /* W = 0 */
-                        /* the wall keeps h0 */
-                        const smoothing_scale scale_ab =
-                            pair_smoothing_scale(&scale, p.h, particle_smoothing_length(smoothing_length, b, &p), &p);
-                        const real w = smoothing_w_at(&scale_ab, sqrt(r2));
-                        const int phase = material_is_gas(materials, material[b]);
-                        sum_w[phase] += w;
-                        sum_p[phase] += pressure[b] * w;
-                        all_w += w;
-                        for (int d = 0; d < 3; ++d) {
-                            sum_rho_r[phase][d] += density[b] * r_ab[d] * w;
-                            sum_u[d] += velocity[3 * b + d] * w;
-                        }
-                    }
-                }
-            }
+            const wall_sums s = wall_sums_of(a, position, velocity, kind, material, cell, smoothing_length, gamma, &g,
+                                             cell_start, density, pressure, materials, &p);
             const real rho0 = reference_density[a];
             const real c0 = material_value(materials, material[a], MATERIAL_SOUND_SPEED);
             const real floor_w = p.pressure_gradient == PRESSURE_MULTIPHASE ? REAL(0.0) : p.background_pressure;
-            const real p_gas = adami_wall_pressure(sum_w[1], sum_p[1], sum_rho_r[1], &p, floor_w, p.background_pressure);
-            const real p_w = adami_wall_pressure(sum_w[0], sum_p[0], sum_rho_r[0], &p, floor_w, p_gas);
+            const real p_gas = adami_wall_pressure(s.w[1], s.p[1], s.rho_r[1], &p, floor_w, p.background_pressure);
+            const real p_w = adami_wall_pressure(s.w[0], s.p[0], s.rho_r[0], &p, floor_w, p_gas);
             pressure[a] = p_w;
-            gas_wall_pressure[a] = sum_w[1] > REAL(0.0) ? p_gas : p_w;
+            gas_wall_pressure[a] = s.w[1] > REAL(0.0) ? p_gas : p_w;
             density[a] = p.pressure_gradient == PRESSURE_MULTIPHASE ? rho0
                                                                     : rho0 + (p_w - p.background_pressure) / (c0 * c0);
             for (int d = 0; d < 3; ++d)
                 wall_velocity[3 * a + d] =
-                    all_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - sum_u[d] / all_w
-                                      : velocity[3 * a + d];
+                    s.all_w > REAL(0.0) ? REAL(2.0) * velocity[3 * a + d] - s.u[d] / s.all_w : velocity[3 * a + d];
         }
     }
 }

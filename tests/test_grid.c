@@ -93,21 +93,26 @@ static int contains(const unsigned *list, int count, unsigned id)
  * over the non-wall set alone (fixture_is_wall); pairs within 1e-5 of the
  * radius are ambiguous in float and not counted either way. */
 /* The loop over sets 0 .. last_set against brute force, and
- * grid_set_empty_near of set last_set (told_empty counts its "empty"s). */
+ * grid_set_empty_near of set last_set (told_empty counts its "empty"s);
+ * without a periodic axis the box loop over set last_set too, and its
+ * order against the trimmed loop's. */
 static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3], int last_set,
                         long long *told_empty)
 {
     const int n = f->p.n;
-    amsph_buffer *count_buf = NULL, *list_buf = NULL, *empty_buf = NULL;
+    amsph_buffer *count_buf = NULL, *list_buf = NULL, *empty_buf = NULL, *box_count_buf = NULL, *box_order_buf = NULL;
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &count_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &empty_buf));
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &box_count_buf));
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &box_order_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * MAX_NEIGHBOURS * sizeof(unsigned), &list_buf));
     CHECK_OK(AMSPH_LAUNCH(f->b, "neighbour_list", n, amsph_arg_buffer(f->p.field[AMSPH_FIELD_POSITION]),
                           amsph_arg_buffer(f->p.field[AMSPH_FIELD_ID]), amsph_arg_buffer(f->g.cell),
                           amsph_arg_int(n), fixture_geometry(f), amsph_arg_buffer(f->g.cell_start),
                           amsph_arg_real(support), amsph_arg_int(GRID_SET_BODIES), amsph_arg_int(last_set),
                           amsph_arg_int(MAX_NEIGHBOURS),
-                          amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf), amsph_arg_buffer(empty_buf)));
+                          amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf), amsph_arg_buffer(empty_buf),
+                          amsph_arg_buffer(box_count_buf), amsph_arg_buffer(box_order_buf)));
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&f->p, &h));
     int *count = malloc((size_t)n * sizeof *count);
@@ -116,15 +121,24 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
     CHECK_OK(amsph_download(f->b, list_buf, 0, (size_t)n * MAX_NEIGHBOURS * sizeof *list, list));
     int *empty = malloc((size_t)n * sizeof *empty);
     CHECK_OK(amsph_download(f->b, empty_buf, 0, (size_t)n * sizeof *empty, empty));
+    int *box_count = malloc((size_t)n * sizeof *box_count), *box_order = malloc((size_t)n * sizeof *box_order);
+    CHECK_OK(amsph_download(f->b, box_count_buf, 0, (size_t)n * sizeof *box_count, box_count));
+    CHECK_OK(amsph_download(f->b, box_order_buf, 0, (size_t)n * sizeof *box_order, box_order));
+    const int any_periodic = periodic[0] || periodic[1] || periodic[2];
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
     const unsigned *id = h.data[AMSPH_FIELD_ID];
     long long missing = 0, extra = 0, pairs = 0, said_empty = 0, wrongly_empty = 0;
+    long long box_wrong = 0, box_pairs = 0, box_out_of_order = 0;
     for (int a = 0; a < n; ++a) {
         said_empty += empty[a];
         CHECK(count[a] <= MAX_NEIGHBOURS, "%s: particle %u has %d neighbours", in->name, id[a], count[a]);
         const unsigned *mine = list + (size_t)a * MAX_NEIGHBOURS;
-        int expected = 0, ambiguous = 0;
+        int expected = 0, ambiguous = 0, in_set = 0, in_set_ambiguous = 0;
         for (int b = 0; b < n; ++b) {
+            const int of_last_set = b != a && fixture_is_wall((int)id[b]) == (last_set == GRID_SET_WALLS);
+            const double r_set = of_last_set ? sqrt(distance2(x, a, b, periodic)) : INFINITY;
+            in_set_ambiguous += fabs(r_set - support) < 1e-5 * support;
+            in_set += r_set < support && !(fabs(r_set - support) < 1e-5 * support);
             if (b == a || (last_set == GRID_SET_BODIES && fixture_is_wall((int)id[b])))
                 continue;
             const double r = sqrt(distance2(x, a, b, periodic));
@@ -147,7 +161,20 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
             }
         extra += count[a] - ambiguous - expected;
         pairs += expected;
+        /* the box loop over set last_set: no pair missed or extra, the trimmed loop's order */
+        if (any_periodic) {
+            box_wrong += box_count[a] != -1;
+        } else {
+            box_wrong += box_count[a] < in_set || box_count[a] > in_set + in_set_ambiguous;
+            box_out_of_order += !box_order[a];
+            box_pairs += in_set;
+        }
     }
+    CHECK(box_wrong == 0 && box_out_of_order == 0,
+          "%s, %dD, set %d: the box loop miscounts %lld particles' neighbours (of %lld pairs), visits %lld out of "
+          "the trimmed loop's order",
+          in->name, f->dim, last_set, box_wrong, box_pairs, box_out_of_order);
+    CHECK(any_periodic || box_pairs > n, "%s, %dD: the box loop found only %lld pairs", in->name, f->dim, box_pairs);
     CHECK(missing == 0 && extra == 0, "%s, %dD, sets 0-%d: %lld pairs missed, %lld extra, of %lld", in->name,
           f->dim, last_set, missing, extra, pairs);
     CHECK(pairs > n, "%s, %dD: only %lld pairs; the input does not test much", in->name, f->dim, pairs);
@@ -155,12 +182,16 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
           in->name, f->dim, last_set, wrongly_empty, said_empty);
     *told_empty += said_empty;
     free(empty);
+    free(box_count);
+    free(box_order);
     free(count);
     free(list);
     amsph_host_free(&h);
     amsph_buffer_free(f->b, count_buf);
     amsph_buffer_free(f->b, list_buf);
     amsph_buffer_free(f->b, empty_buf);
+    amsph_buffer_free(f->b, box_count_buf);
+    amsph_buffer_free(f->b, box_order_buf);
 }
 
 static void test_neighbours(amsph_backend *b, int dim)
