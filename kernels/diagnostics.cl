@@ -60,14 +60,17 @@ static inline uint visit_fold(uint fold, int a, int b, real r2, real radius, GLO
  * number even when the list is cut. last_set_empty[a] is what
  * grid_set_empty_near says of set last_set around a. On a grid without a
  * periodic axis, box_count[a] is the number of those of set last_set that
- * FOR_EACH_IN_BOX finds, and box_order[a] 1 where it visits them in the
- * order of FOR_EACH_NEIGHBOUR_IN over that set (visit_fold); -1 and 0 with
- * a periodic axis. */
+ * FOR_EACH_IN_BOX finds, and box_order[a] 1 where it visits them in
+ * the order of FOR_EACH_NEIGHBOUR_IN over that set (visit_fold); -1 and 0
+ * with a periodic axis. within_order[a] is 1 where FOR_EACH_NEIGHBOUR_WITHIN
+ * visits the particles of both sets within the radius in the order of
+ * FOR_EACH_NEIGHBOUR (and no other particle). */
 KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
                            GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, real radius, int first_set, int last_set,
                            int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours,
-                           GLOBAL int *last_set_empty, GLOBAL int *box_count, GLOBAL int *box_order)
+                           GLOBAL int *last_set_empty, GLOBAL int *box_count, GLOBAL int *box_order,
+                           GLOBAL int *within_order)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -111,5 +114,17 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
             box_count[a] = in_box;
             box_order[a] = boxed == trimmed;
         }
+        uint trimmed = 0u, listed = 0u;
+        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, radius)
+        {
+            real r_ab[3];
+            grid_displacement(&run, position, b, r_ab);
+            trimmed = visit_fold(trimmed, a, b, r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2], radius, id);
+        }
+        FOR_EACH_NEIGHBOUR_WITHIN(b, run, &g, cc, x_a, cell_start, position, a, radius)
+        {
+            listed = 31u * listed + id[b];
+        }
+        within_order[a] = listed == trimmed;
     }
 }

@@ -359,8 +359,9 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
                 sums->moment[3 * i + j] -= v_b * r_ab[i] * f * r_ab[j];
                 sums->rate[3 * i + j] += v_b * u_ab[i] * f * r_ab[j];
             }
-    if (kind[b] == KIND_FLUID && p->density_diffusion != DIFFUSION_NONE &&
-        same_phase(materials, p, s_a->material, material[b])) {
+    /* between fluid particles only: the term of a wall neighbour (its state
+     * is valid) is computed and dropped by a select, not a branch */
+    if (p->density_diffusion != DIFFUSION_NONE && same_phase(materials, p, s_a->material, material[b])) {
         const real q_b = density[b] - (diffuses_departure(p) ? reference_density[b] : REAL(0.0));
         real dq = s_a->q - q_b;
         if (p->density_diffusion == DIFFUSION_FOURTAKAS) {
@@ -369,7 +370,8 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
             const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
             dq -= reference_density[b] * dot3(p->gravity, r_ab) / (c0_b * c0_b);
         }
-        sums->diffusion += density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
+        const real term = density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
+        sums->diffusion += kind[b] == KIND_FLUID ? term : REAL(0.0);
     }
 }
 
@@ -511,11 +513,11 @@ PAIR_INLINE void fluid_forces_of(int a, GLOBAL const real *position, GLOBAL cons
         add_continuity_pair(&c_a, a, a, self, REAL(0.0), velocity, density, reference_density, smoothing_length,
                             mass, kind, material, materials, p, sums);
     }
-    FOR_EACH_NEIGHBOUR(b, run, g, cc, x_a, cell_start, support)
+    FOR_EACH_NEIGHBOUR_WITHIN(b, run, g, cc, x_a, cell_start, position, a, support)
     {
-        real r_ab[3], r2;
-        if (b == a || !grid_pair_within(&run, position, b, support * support, r_ab, &r2))
-            continue;
+        real r_ab[3];
+        grid_displacement(&run, position, b, r_ab);
+        const real r2 = dot3(r_ab, r_ab);
         fluid_pair_acceleration(&s_a, b, r_ab, r2, velocity, wall_velocity, density, pressure, gas_wall_pressure,
                                 mass, gamma, liquid_fraction, smoothing_length, kind, material, materials, p, acc);
         if (p->one_pass)

@@ -196,15 +196,12 @@ static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_
     grid_run_locate(g, cell_start, s->x, run);
 }
 
-/* Loop b over the particles of the sets first_set .. last_set (GRID_SET_*)
- * in the cells within `reach` (<= GRID_MAX_REACH) of cell cc that come
- * within `radius` of the point x (a private real[3]; grid_point), one run
- * (grid_run, named `run`) of contiguous particles per row of cells, set
- * and periodic image, the rows and their cells trimmed to the sphere: with
- * cells of half the kernel support, 3D, 2.5 candidates per particle within
- * the support.
- *   FOR_EACH_NEIGHBOUR_IN(b, run, &g, cc, x, cell_start, reach, radius, first_set, last_set) { ... } */
-#define FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, reach, radius, from_set, to_set)      \
+/* Loop over the runs (grid_run, named `run`) of the sets first_set ..
+ * last_set (GRID_SET_*) in the cells within `reach` (<= GRID_MAX_REACH) of
+ * cell cc that come within `radius` of the point x (a private real[3];
+ * grid_point): one run of contiguous particles per row of cells, set and
+ * periodic image, the rows and their cells trimmed to the sphere. */
+#define FOR_EACH_RUN_IN(run, g, cc, x, cell_start, reach, radius, from_set, to_set)                \
     for (grid_span nb_s_, *nb_once_ = grid_near_span(&nb_s_, (g), (x), (cc), (reach), (radius));   \
          nb_once_; nb_once_ = 0)                                                                   \
         for (int nb_z_ = nb_s_.lo_z; nb_z_ <= nb_s_.hi_z; ++nb_z_)                                 \
@@ -215,8 +212,15 @@ static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_
                      nb_y_ <= nb_y_hi_; ++nb_y_)                                                   \
                     for (grid_run run = grid_row((g), (cell_start), &nb_s_, (reach), nb_room_, nb_y_, nb_z_, \
                                                  (from_set), (to_set));                           \
-                         run.set <= run.last_set; grid_run_next((g), (cell_start), &nb_s_, &run))   \
-                        for (int b = run.first; b < run.end; ++b)
+                         run.set <= run.last_set; grid_run_next((g), (cell_start), &nb_s_, &run))
+
+/* Loop b over the particles of the runs of FOR_EACH_RUN_IN: with cells of
+ * half the kernel support, 3D, 2.5 candidates per particle within the
+ * support.
+ *   FOR_EACH_NEIGHBOUR_IN(b, run, &g, cc, x, cell_start, reach, radius, first_set, last_set) { ... } */
+#define FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, reach, radius, from_set, to_set)      \
+    FOR_EACH_RUN_IN(run, g, cc, x, cell_start, reach, radius, from_set, to_set)                    \
+    for (int b = run.first; b < run.end; ++b)
 
 /* The loop over every particle (both sets) within `reach` cells. */
 #define FOR_EACH_NEIGHBOUR_NEAR(b, run, g, cc, x, cell_start, reach, radius)                       \
@@ -230,6 +234,82 @@ static inline void grid_run_next(const grid_geometry *g, GLOBAL const int *cell_
 #define FOR_EACH_BODY_NEIGHBOUR(b, run, g, cc, x, cell_start, radius)                              \
     FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius, GRID_SET_BODIES, \
                           GRID_SET_BODIES)
+
+/* r_ab = r_a - r_b for the loop's point as r_a and the image of b next to it. */
+static inline void grid_displacement(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])
+{
+    for (int d = 0; d < 3; ++d)
+        r_ab[d] = run->point[d] - position[3 * b + d];
+}
+
+/* r_ab (grid_displacement) and r2 = |r_ab|^2; 1 when r2 < radius2. */
+static inline int grid_pair_within(const grid_run *run, GLOBAL const real *position, int b, real radius2,
+                                   real r_ab[3], real *r2)
+{
+    grid_displacement(run, position, b, r_ab);
+    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
+    return *r2 < radius2;
+}
+
+/* Candidates a pair loop tests at a time (FOR_EACH_NEIGHBOUR_WITHIN). */
+#define GRID_CANDIDATES 16
+
+/* The particles of a stretch of a run that lie within the radius. */
+typedef struct {
+    int count;
+    int index[GRID_CANDIDATES];
+} grid_within;
+
+/* The particles first .. end - 1 of a run (at most GRID_CANDIDATES), but
+ * `self`, closer than sqrt(radius2) to the run's point, listed without a
+ * branch on the distance. Returns w, for the loop's test. */
+static inline grid_within *grid_gather_within(const real point[3], GLOBAL const real *position, int first, int end,
+                                              int self, real radius2, grid_within *w)
+{
+    int count = 0;
+    for (int b = first; b < end; ++b) {
+        real r2 = REAL(0.0);
+        for (int d = 0; d < 3; ++d) {
+            const real r = point[d] - position[3 * b + d];
+            r2 += r * r;
+        }
+        w->index[count] = b;
+        count += (r2 < radius2) & (b != self);
+    }
+    w->count = count;
+    return w;
+}
+
+/* The first index past the stretch of GRID_CANDIDATES from first, within end. */
+static inline int grid_stretch_end(int first, int end)
+{
+    return end - first < GRID_CANDIDATES ? end : first + GRID_CANDIDATES;
+}
+
+/* Loop b over the list w of grid_gather_within (a loop's body may
+ * `continue`, not `break`). */
+#define FOR_EACH_LISTED(b, w)                                                                      \
+    for (int nb_k_ = 0; nb_k_ < (w).count; ++nb_k_)                                                \
+        for (int b = (w).index[nb_k_], nb_one_ = 1; nb_one_; nb_one_ = 0)
+
+/* Loop b over the particles of both sets within `radius` (up to the kernel
+ * support) of particle `self` at the point x, but self: FOR_EACH_NEIGHBOUR
+ * with the distance test taken out of the pair loop. Each run's candidates
+ * are listed a stretch of GRID_CANDIDATES at a time (grid_gather_within),
+ * then the pair loop visits the list, in the run's order: in 3D 2 in 5
+ * candidates lie within, in no order a branch predictor can follow, and a
+ * branch on each would be mispredicted about every third time. The body
+ * computes r_ab itself (grid_displacement) and may `continue`, not `break`.
+ *   FOR_EACH_NEIGHBOUR_WITHIN(b, run, &g, cc, x, cell_start, position, self, radius) { ... } */
+#define FOR_EACH_NEIGHBOUR_WITHIN(b, run, g, cc, x, cell_start, position, self, radius)           \
+    FOR_EACH_RUN_IN(run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius, GRID_SET_BODIES,     \
+                    GRID_SET_WALLS)                                                                \
+    for (int nb_first_ = run.first; nb_first_ < run.end; nb_first_ += GRID_CANDIDATES)            \
+        for (grid_within nb_w_, *nb_list_ = grid_gather_within(run.point, (position), nb_first_,    \
+                                                               grid_stretch_end(nb_first_, run.end), \
+                                                               (self), (radius) * (radius), &nb_w_); \
+             nb_list_; nb_list_ = 0)                                                               \
+            FOR_EACH_LISTED(b, nb_w_)
 
 /* Does the grid wrap around along any axis? The box loops below serve only
  * a grid that does not. */
@@ -297,21 +377,5 @@ static inline int grid_set_empty_near(const grid_geometry *g, GLOBAL const int *
                 for (int nb_row_ = grid_box_row((g), nb_y_, nb_z_, (set)), b = (cell_start)[nb_row_ + nb_lo_[0]], \
                          nb_end_ = (cell_start)[nb_row_ + nb_hi_[0] + 1];                          \
                      b < nb_end_; ++b)
-
-/* r_ab = r_a - r_b for the loop's point as r_a and the image of b next to it. */
-static inline void grid_displacement(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])
-{
-    for (int d = 0; d < 3; ++d)
-        r_ab[d] = run->point[d] - position[3 * b + d];
-}
-
-/* r_ab (grid_displacement) and r2 = |r_ab|^2; 1 when r2 < radius2. */
-static inline int grid_pair_within(const grid_run *run, GLOBAL const real *position, int b, real radius2,
-                                   real r_ab[3], real *r2)
-{
-    grid_displacement(run, position, b, r_ab);
-    *r2 = r_ab[0] * r_ab[0] + r_ab[1] * r_ab[1] + r_ab[2] * r_ab[2];
-    return *r2 < radius2;
-}
 
 #endif

@@ -95,16 +95,19 @@ static int contains(const unsigned *list, int count, unsigned id)
 /* The loop over sets 0 .. last_set against brute force, and
  * grid_set_empty_near of set last_set (told_empty counts its "empty"s);
  * without a periodic axis the box loop over set last_set too, and its
- * order against the trimmed loop's. */
+ * order against the trimmed loop's; the listing loop over both sets
+ * against the trimmed loop's visits. */
 static void check_pairs(grid_fixture *f, const input_case *in, const int periodic[3], int last_set,
                         long long *told_empty)
 {
     const int n = f->p.n;
-    amsph_buffer *count_buf = NULL, *list_buf = NULL, *empty_buf = NULL, *box_count_buf = NULL, *box_order_buf = NULL;
+    amsph_buffer *count_buf = NULL, *list_buf = NULL, *empty_buf = NULL, *box_count_buf = NULL, *box_order_buf = NULL,
+                 *within_buf = NULL;
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &count_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &empty_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &box_count_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &box_order_buf));
+    CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * sizeof(int), &within_buf));
     CHECK_OK(amsph_buffer_alloc(f->b, (size_t)n * MAX_NEIGHBOURS * sizeof(unsigned), &list_buf));
     CHECK_OK(AMSPH_LAUNCH(f->b, "neighbour_list", n, amsph_arg_buffer(f->p.field[AMSPH_FIELD_POSITION]),
                           amsph_arg_buffer(f->p.field[AMSPH_FIELD_ID]), amsph_arg_buffer(f->g.cell),
@@ -112,7 +115,8 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
                           amsph_arg_real(support), amsph_arg_int(GRID_SET_BODIES), amsph_arg_int(last_set),
                           amsph_arg_int(MAX_NEIGHBOURS),
                           amsph_arg_buffer(count_buf), amsph_arg_buffer(list_buf), amsph_arg_buffer(empty_buf),
-                          amsph_arg_buffer(box_count_buf), amsph_arg_buffer(box_order_buf)));
+                          amsph_arg_buffer(box_count_buf), amsph_arg_buffer(box_order_buf),
+                          amsph_arg_buffer(within_buf)));
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&f->p, &h));
     int *count = malloc((size_t)n * sizeof *count);
@@ -124,11 +128,13 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
     int *box_count = malloc((size_t)n * sizeof *box_count), *box_order = malloc((size_t)n * sizeof *box_order);
     CHECK_OK(amsph_download(f->b, box_count_buf, 0, (size_t)n * sizeof *box_count, box_count));
     CHECK_OK(amsph_download(f->b, box_order_buf, 0, (size_t)n * sizeof *box_order, box_order));
+    int *within_order = malloc((size_t)n * sizeof *within_order);
+    CHECK_OK(amsph_download(f->b, within_buf, 0, (size_t)n * sizeof *within_order, within_order));
     const int any_periodic = periodic[0] || periodic[1] || periodic[2];
     const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
     const unsigned *id = h.data[AMSPH_FIELD_ID];
     long long missing = 0, extra = 0, pairs = 0, said_empty = 0, wrongly_empty = 0;
-    long long box_wrong = 0, box_pairs = 0, box_out_of_order = 0;
+    long long box_wrong = 0, box_pairs = 0, box_out_of_order = 0, within_out_of_order = 0;
     for (int a = 0; a < n; ++a) {
         said_empty += empty[a];
         CHECK(count[a] <= MAX_NEIGHBOURS, "%s: particle %u has %d neighbours", in->name, id[a], count[a]);
@@ -161,6 +167,7 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
             }
         extra += count[a] - ambiguous - expected;
         pairs += expected;
+        within_out_of_order += !within_order[a];
         /* the box loop over set last_set: no pair missed or extra, the trimmed loop's order */
         if (any_periodic) {
             box_wrong += box_count[a] != -1;
@@ -174,6 +181,8 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
           "%s, %dD, set %d: the box loop miscounts %lld particles' neighbours (of %lld pairs), visits %lld out of "
           "the trimmed loop's order",
           in->name, f->dim, last_set, box_wrong, box_pairs, box_out_of_order);
+    CHECK(within_out_of_order == 0, "%s, %dD: the listing loop visits %lld particles' neighbours out of the "
+          "trimmed loop's order", in->name, f->dim, within_out_of_order);
     CHECK(any_periodic || box_pairs > n, "%s, %dD: the box loop found only %lld pairs", in->name, f->dim, box_pairs);
     CHECK(missing == 0 && extra == 0, "%s, %dD, sets 0-%d: %lld pairs missed, %lld extra, of %lld", in->name,
           f->dim, last_set, missing, extra, pairs);
@@ -184,6 +193,7 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
     free(empty);
     free(box_count);
     free(box_order);
+    free(within_order);
     free(count);
     free(list);
     amsph_host_free(&h);
@@ -192,6 +202,7 @@ static void check_pairs(grid_fixture *f, const input_case *in, const int periodi
     amsph_buffer_free(f->b, empty_buf);
     amsph_buffer_free(f->b, box_count_buf);
     amsph_buffer_free(f->b, box_order_buf);
+    amsph_buffer_free(f->b, within_buf);
 }
 
 static void test_neighbours(amsph_backend *b, int dim)
