@@ -51,7 +51,7 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->cell));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->order));
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
-    AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->count));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->rank));
     AMSPH_CHECK(amsph_buffer_alloc(b, AMSPH_SCAN_CHUNKS * sizeof(int), &g->chunk_total));
     return 0;
 }
@@ -61,7 +61,7 @@ void amsph_grid_free(amsph_grid *g, amsph_backend *b)
     amsph_buffer_free(b, g->cell);
     amsph_buffer_free(b, g->order);
     amsph_buffer_free(b, g->cell_start);
-    amsph_buffer_free(b, g->count);
+    amsph_buffer_free(b, g->rank);
     amsph_buffer_free(b, g->chunk_total);
     for (int w = 0; w <= AMSPH_GRID_SCRATCH; ++w)
         amsph_buffer_free(b, g->scratch[w]);
@@ -112,16 +112,17 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
         return amsph_fail("grid: %d particles exceed the grid's capacity of %d", n, g->capacity);
     const int departed = grid_departed_bucket(&g->geometry), buckets = departed + 1;
     const amsph_arg geometry = amsph_arg_bytes(&g->geometry, sizeof g->geometry);
-    AMSPH_CHECK(fill_zero(b, g->count, buckets + 1));
+    /* the histogram in cell_start, scanned in place: no array of the buckets' size but
+     * cell_start (at 1e6 particles of the 3D dam break, 8 million buckets, 36 bytes per
+     * particle each) */
+    AMSPH_CHECK(fill_zero(b, g->cell_start, buckets + 1));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_bin", n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(n), geometry,
-                             amsph_arg_buffer(g->cell), amsph_arg_buffer(g->count)));
-    AMSPH_CHECK(amsph_exclusive_scan(b, g->count, g->cell_start, g->chunk_total, buckets + 1));
-    /* the histogram, scanned, now counts the slots taken per bucket in the scatter */
-    AMSPH_CHECK(fill_zero(b, g->count, buckets));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_scatter", n, amsph_arg_buffer(g->cell), amsph_arg_int(n),
-                             amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->count),
-                             amsph_arg_buffer(g->order)));
+                             amsph_arg_buffer(g->cell), amsph_arg_buffer(g->cell_start),
+                             amsph_arg_buffer(g->rank)));
+    AMSPH_CHECK(amsph_exclusive_scan(b, g->cell_start, g->cell_start, g->chunk_total, buckets + 1));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_scatter", n, amsph_arg_buffer(g->cell), amsph_arg_buffer(g->rank),
+                             amsph_arg_int(n), amsph_arg_buffer(g->cell_start), amsph_arg_buffer(g->order)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_order_cells", buckets, amsph_arg_buffer(g->order),
                              amsph_arg_buffer(g->cell_start), amsph_arg_int(buckets),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_ID])));

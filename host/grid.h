@@ -18,8 +18,8 @@ typedef struct {
     amsph_buffer *cell;         /* cell of each particle, in sorted order after a sort */
     amsph_buffer *cell_start;   /* GRID_SETS total_cells + 2 ints: first particle of each bucket
                                    (kernels/grid_geometry.h) */
-    amsph_buffer *count;        /* histogram, the prefix sum's input; then the slots taken per
-                                   bucket during the scatter */
+    amsph_buffer *rank;         /* each particle's slot within its bucket (kernels/grid.cl
+                                   grid_bin) */
     amsph_buffer *order;        /* sorted slot -> old index */
     amsph_buffer *chunk_total;  /* prefix-sum chunk totals */
     amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];
@@ -38,8 +38,8 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
  * shrinks, p->removed grows). */
 int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
 
-/* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl),
- * with chunk_total a scratch of AMSPH_SCAN_CHUNKS ints. */
+/* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl; in and
+ * out may be the same buffer), with chunk_total a scratch of AMSPH_SCAN_CHUNKS ints. */
 #define AMSPH_SCAN_CHUNKS 1024
 int amsph_exclusive_scan(amsph_backend *b, amsph_buffer *in, amsph_buffer *out, amsph_buffer *chunk_total, int n);
 void amsph_grid_free(amsph_grid *g, amsph_backend *b);

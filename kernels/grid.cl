@@ -48,8 +48,12 @@ KERNEL void departing_enthalpy(GLOBAL const real *position, GLOBAL const int *ki
     }
 }
 
+/* The bucket of each particle, the histogram of the buckets (count, zeroed
+ * before), and each particle's slot within its bucket, in the order the
+ * increments happened to run (grid_order_cells makes the order
+ * deterministic). */
 KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_geometry g,
-                     GLOBAL int *bucket_of, GLOBAL int *count)
+                     GLOBAL int *bucket_of, GLOBAL int *count, GLOBAL int *rank)
 {
     FOR_EACH_ITEM(i, n)
     {
@@ -72,7 +76,7 @@ KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_
         const int set = kind[i] == KIND_WALL ? GRID_SET_WALLS : GRID_SET_BODIES;
         const int bucket = index < 0 ? grid_departed_bucket(&g) : grid_bucket(&g, index, set);
         bucket_of[i] = bucket;
-        ATOMIC_INC(&count[bucket]);
+        rank[i] = ATOMIC_INC(&count[bucket]);
     }
 }
 
@@ -84,7 +88,7 @@ KERNEL void grid_cells_of_buckets(GLOBAL int *cell, int n, grid_geometry g)
 
 /* Exclusive prefix sum in three passes over chunks of `chunk` entries:
  * each item scans its chunk, one item scans the chunk totals, each item adds
- * its chunk's offset. */
+ * its chunk's offset. count and offset may be the same buffer. */
 KERNEL void scan_chunks(GLOBAL const int *count, int n, int chunk, int nchunks, GLOBAL int *offset,
                         GLOBAL int *chunk_total)
 {
@@ -94,8 +98,9 @@ KERNEL void scan_chunks(GLOBAL const int *count, int n, int chunk, int nchunks, 
         const int end = begin + chunk < n ? begin + chunk : n;
         int sum = 0;
         for (int j = begin; j < end; ++j) {
+            const int c = count[j];
             offset[j] = sum;
-            sum += count[j];
+            sum += c;
         }
         chunk_total[k] = sum;
     }
@@ -126,17 +131,15 @@ KERNEL void scan_add(GLOBAL int *offset, int n, int chunk, int nchunks,
     }
 }
 
-KERNEL void grid_scatter(GLOBAL const int *cell, int n, GLOBAL const int *cell_start,
-                         GLOBAL int *fill, GLOBAL int *order)
+/* Each particle to its slot in the sorted order: its bucket's start plus
+ * its rank within the bucket (grid_bin). */
+KERNEL void grid_scatter(GLOBAL const int *cell, GLOBAL const int *rank, int n, GLOBAL const int *cell_start,
+                         GLOBAL int *order)
 {
-    FOR_EACH_ITEM(i, n)
-    {
-        const int c = cell[i];
-        order[cell_start[c] + ATOMIC_INC(&fill[c])] = i;
-    }
+    FOR_EACH_ITEM(i, n) { order[cell_start[cell[i]] + rank[i]] = i; }
 }
 
-/* The scatter's order within a cell depends on thread timing; sorting each
+/* The ranks' order within a cell depends on thread timing; sorting each
  * cell's slots by global id makes the result deterministic on every backend. */
 KERNEL void grid_order_cells(GLOBAL int *order, GLOBAL const int *cell_start, int nbuckets,
                              GLOBAL const uint *id)
