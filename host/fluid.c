@@ -71,6 +71,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_REFERENCE_DENSITY));
     set_reference_density(&s->config, h);
     s->reference_density_varies = reference_density_varies(&s->config);
+    p->uniform_material = s->config.n_materials == 1 && !s->reference_density_varies;
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_DENSITY_RATE));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_WALL_VELOCITY));
     AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_GAS_WALL_PRESSURE));

@@ -307,7 +307,7 @@ static inline real corrected_density_rate(const continuity_sums *s, real rho_a)
 /* What the continuity sums need of particle a. */
 typedef struct {
     int fluid, material;
-    real rho, q;           /* q: the diffused quantity (density_diffusion_pair) */
+    real rho, rho0, q;     /* q: the diffused quantity (density_diffusion_pair) */
     real h;                /* particle_smoothing_length */
     real u[3];
     smoothing_scale scale; /* of W at h0 */
@@ -322,7 +322,8 @@ static inline continuity_side continuity_side_of(int a, GLOBAL const real *veloc
     s.fluid = kind[a] == KIND_FLUID;
     s.material = material[a];
     s.rho = density[a];
-    s.q = s.rho - (diffuses_departure(p) ? reference_density[a] : REAL(0.0));
+    s.rho0 = reference_density[a];
+    s.q = s.rho - (diffuses_departure(p) ? s.rho0 : REAL(0.0));
     s.h = particle_smoothing_length(smoothing_length, a, p);
     s.scale = smoothing_scale_of(p->h);
     for (int d = 0; d < 3; ++d)
@@ -362,13 +363,15 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
     /* between fluid particles only: the term of a wall neighbour (its state
      * is valid) is computed and dropped by a select, not a branch */
     if (p->density_diffusion != DIFFUSION_NONE && same_phase(materials, p, s_a->material, material[b])) {
-        const real q_b = density[b] - (diffuses_departure(p) ? reference_density[b] : REAL(0.0));
+        /* b's rho0: a's where every particle has the one material (p->uniform_material) */
+        const real rho0_b = p->uniform_material ? s_a->rho0 : reference_density[b];
+        const real q_b = density[b] - (diffuses_departure(p) ? rho0_b : REAL(0.0));
         real dq = s_a->q - q_b;
         if (p->density_diffusion == DIFFUSION_FOURTAKAS) {
             /* minus the hydrostatic density difference of the pair,
              * rho0_b (g . r_ab) / c0_b^2 (linear equation of state) */
             const real c0_b = material_value(materials, material[b], MATERIAL_SOUND_SPEED);
-            dq -= reference_density[b] * dot3(p->gravity, r_ab) / (c0_b * c0_b);
+            dq -= rho0_b * dot3(p->gravity, r_ab) / (c0_b * c0_b);
         }
         const real term = density_diffusion_pair(dq, REAL(0.0), f * r2, r2, v_b, p);
         sums->diffusion += kind[b] == KIND_FLUID ? term : REAL(0.0);
@@ -464,7 +467,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
 
 /* The options of the fluid-only scenes (dam breaks, tanks; DualSPHysics's
  * scheme): fixed h, the symmetric pressure force, artificial viscosity,
- * the plain continuity sum, neither the tensile correction nor a barrier.
+ * the plain continuity sum, neither the tensile correction nor a barrier,
+ * one material of constant rho0.
  * Where a case has them, fluid_forces and wall_state hand their pair loops
  * fluid_params_plain, a copy of the parameters with these options as
  * constants, and the compiler folds the other options' branches out of the
@@ -473,7 +477,7 @@ static inline int fluid_options_plain(const fluid_params *p)
 {
     return p->smoothing_length == SMOOTHING_FIXED && p->pressure_gradient == PRESSURE_SYMMETRIC &&
            p->viscosity == VISCOSITY_ARTIFICIAL && p->continuity == CONTINUITY_PLAIN &&
-           p->tensile_correction == REAL(0.0) && p->barrier_stiffness == REAL(0.0);
+           p->tensile_correction == REAL(0.0) && p->barrier_stiffness == REAL(0.0) && p->uniform_material;
 }
 
 static inline fluid_params fluid_params_plain(fluid_params p)
@@ -484,6 +488,7 @@ static inline fluid_params fluid_params_plain(fluid_params p)
     p.continuity = CONTINUITY_PLAIN;
     p.tensile_correction = REAL(0.0);
     p.barrier_stiffness = REAL(0.0);
+    p.uniform_material = 1;
     return p;
 }
 

@@ -227,7 +227,7 @@ PAIR_INLINE void fluid_pair_acceleration(const fluid_pair_side *s_a, int b, cons
     const int viscous = fluid_b || p->wall_slip == WALL_NO_SLIP;
     real radial = pressure_term; /* multiplies r_ab */
     if (viscous && p->viscosity == VISCOSITY_ARTIFICIAL) {
-        const real c_b = material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
+        const real c_b = p->uniform_material ? s_a->c : material_value(materials, mat_b, MATERIAL_SOUND_SPEED);
         radial += -m_b * f *
                   artificial_viscosity(dot3(u_visc, r_ab), r2, REAL(0.5) * (s_a->c + c_b),
                                        REAL(0.5) * (s_a->rho + rho_b), h_ab, p);

@@ -33,6 +33,9 @@ typedef struct {
     AMSPH_SHARED_REAL barrier_distance;    /* r_b, m */
     int one_pass;                          /* 1: fluid_forces evaluates the continuity sums too
                                               (fluid.integration: verlet) */
+    int uniform_material;                  /* 1: every particle has the one material of the case,
+                                              whose rho0 does not vary: a pair term reads no
+                                              neighbour's material or rho0 */
 } fluid_params;
 
 #endif

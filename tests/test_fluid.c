@@ -425,13 +425,15 @@ static int fluid_rates(amsph_sim *s, amsph_host_particles *h)
 
 /* Where a case has the fluid-only options (fixed h, symmetric pressure,
  * artificial viscosity, plain continuity, no tensile correction or
- * barrier), the fluid pass runs its pair loop compiled with them as
- * constants (kernels/fluid.cl fluid_params_plain); the 3D dam break under
- * the Verlet scheme has them. A barrier of no reach (stiffness 1, distance
- * 0) adds nothing to any pair but sends the pass through the general loop:
- * its accelerations and density rates, 0.05 s into the collapse, must be
- * the same (to float rounding, as an OpenCL compiler may contract the two
- * loops differently), on both backends. */
+ * barrier, one material of constant rho0), the fluid pass runs its pair
+ * loop compiled with them as constants (kernels/fluid.cl
+ * fluid_params_plain), which reads no neighbour's material or rho0; the 3D
+ * dam break under the Verlet scheme has them. A barrier of no reach
+ * (stiffness 1, distance 0) adds nothing to any pair but sends the pass
+ * through the general loop, told to read every neighbour's material and
+ * rho0 (uniform_material 0): its accelerations and density rates, 0.05 s
+ * into the collapse, must be the same (to float rounding, as an OpenCL
+ * compiler may contract the two loops differently), on both backends. */
 static void test_plain_options_loop(void)
 {
     for (int k = 0; k < TESTING_BACKENDS; ++k) {
@@ -446,8 +448,10 @@ static void test_plain_options_loop(void)
         CHECK_OK(amsph_sim_advance(&s, 0.05, NULL, NULL));
         amsph_host_particles plain, general;
         CHECK_OK(fluid_rates(&s, &plain));
+        CHECK(s.fluid.uniform_material, "backend %d: the dam break does not take the plain loop", k);
         s.fluid.barrier_stiffness = 1;
         s.fluid.barrier_distance = 0;
+        s.fluid.uniform_material = 0;
         CHECK_OK(fluid_rates(&s, &general));
         double acc_scale = 0.0, rate_scale = 0.0, acc_differ = 0.0, rate_differ = 0.0;
         for (int i = 0; i < plain.n; ++i) {
