@@ -81,32 +81,6 @@ static inline real adami_wall_pressure(real sum_w, real sum_p, const real sum_rh
     return sum_w > REAL(0.0) ? fmax(floor_w, (sum_p + dot3(p->gravity, sum_rho_r)) / sum_w) : fallback;
 }
 
-/* Wall and fixed-solid particles take their state from the fluid around them
- * (Adami, Hu & Adams 2012, Eqs. 22, 27, 28):
- *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
- *   rho_w = rho0_w + (p_w - p_b) / c0^2        (the inverse equation of state)
- *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
- * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
- * rho0_w and c0 are the wall's own (its material at its temperature), so
- * that its volume m_w / rho_w stays dx^d next to fluids of any rho0. In the
- * multiphase form rho_w = rho0_w: there a wall's density serves only as its
- * volume (the pair pressure takes the fluid's density for it), which keeps
- * the lattice volume; the inverse equation of state would make a wall under
- * 0.5 m of water 1.2% smaller than the fluid's particles beside it (whose
- * hydrostatic mass rho dx^d gives them the lattice volume) and push them off
- * the bottom at 0.2 g.
- * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
- * pressure would glue separating fluid to it and draw particles into it.
- * In the multiphase form (a gas fills the space, nothing separates from a
- * wall) p_w is only kept >= 0: the top of a gas column at rest sits at
- * p_b less its weight, and a wall held at p_b would push it down.
- * Each phase sees the wall's pressure extrapolated from its own particles:
- * `pressure` (and rho_w) sums over the liquid and other non-gas fluid,
- * `gas_wall_pressure` over the gas, each over the other phase where none of
- * its own is near. One sum over both would show the gas beside a
- * liquid-gas interface the liquid's pressure, rho_l g dx above its own: at
- * a density ratio of 100 that pushes the gas along the wall at 100 times
- * its weight. Without a gas both are the sum over all the fluid. */
 /* The sums of wall_state over the fluid around a wall particle: [0] over
  * the non-gas fluid, [1] over the gas. */
 typedef struct {
@@ -185,6 +159,32 @@ PAIR_INLINE wall_sums wall_sums_of(int a, GLOBAL const real *position, GLOBAL co
     return s;
 }
 
+/* Wall and fixed-solid particles take their state from the fluid around them
+ * (Adami, Hu & Adams 2012, Eqs. 22, 27, 28):
+ *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
+ *   rho_w = rho0_w + (p_w - p_b) / c0^2        (the inverse equation of state)
+ *   u~_w  = 2 u_w - sum_f u_f W_wf / sum_f W_wf (no-slip ghost velocity)
+ * with r_wf = r_w - r_f and a_w = 0 (walls move at constant velocity).
+ * rho0_w and c0 are the wall's own (its material at its temperature), so
+ * that its volume m_w / rho_w stays dx^d next to fluids of any rho0. In the
+ * multiphase form rho_w = rho0_w: there a wall's density serves only as its
+ * volume (the pair pressure takes the fluid's density for it), which keeps
+ * the lattice volume; the inverse equation of state would make a wall under
+ * 0.5 m of water 1.2% smaller than the fluid's particles beside it (whose
+ * hydrostatic mass rho dx^d gives them the lattice volume) and push them off
+ * the bottom at 0.2 g.
+ * p_w is kept >= p_b: a wall that pulled on the fluid with a negative
+ * pressure would glue separating fluid to it and draw particles into it.
+ * In the multiphase form (a gas fills the space, nothing separates from a
+ * wall) p_w is only kept >= 0: the top of a gas column at rest sits at
+ * p_b less its weight, and a wall held at p_b would push it down.
+ * Each phase sees the wall's pressure extrapolated from its own particles:
+ * `pressure` (and rho_w) sums over the liquid and other non-gas fluid,
+ * `gas_wall_pressure` over the gas, each over the other phase where none of
+ * its own is near. One sum over both would show the gas beside a
+ * liquid-gas interface the liquid's pressure, rho_l g dx above its own: at
+ * a density ratio of 100 that pushes the gas along the wall at 100 times
+ * its weight. Without a gas both are the sum over all the fluid. */
 KERNEL void wall_state(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *cell,
                        GLOBAL const real *smoothing_length, GLOBAL const real *reference_density,
@@ -469,7 +469,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
  * scheme): fixed h, the symmetric pressure force, artificial viscosity,
  * the plain continuity sum, neither the tensile correction nor a barrier,
  * one material of constant rho0.
- * Where a case has them, fluid_forces and wall_state hand their pair loops
+ * Where a case has them, fluid_forces hands its pair loop
  * fluid_params_plain, a copy of the parameters with these options as
  * constants, and the compiler folds the other options' branches out of the
  * pair terms: one source compiled twice, as a C++ template would be. */
