@@ -206,7 +206,7 @@ static int allocate_device_state(amsph_sim *s)
                                 amsph_fluid_max_smoothing_ratio(c) * s->support, capacity));
     s->grid.recomputed = amsph_fluid_recomputed_fields(s);
     if (c->surface.enabled)
-        AMSPH_CHECK(amsph_surface_check_grid(s));
+        AMSPH_CHECK(amsph_surface_allocate(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
     if (c->fluid.shifting > 0.0)
@@ -241,6 +241,8 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->closest);
     amsph_buffer_free(s->backend, s->shift);
     amsph_buffer_free(s->backend, s->contact_pull);
+    for (int k = 0; k < 2; ++k)
+        amsph_buffer_free(s->backend, s->surface_blocks[k]);
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);

@@ -95,6 +95,8 @@ typedef struct {
     amsph_buffer *shift;     /* particle shifting displacements, three reals per particle (fluid.shifting) */
     amsph_buffer *contact_pull; /* four reals per particle: the surface tension's pull and its weight
                                    (surface with grains; kernels/surface.cl surface_contact_pull) */
+    amsph_buffer *surface_blocks[2]; /* an int per block of cells: the blocks' distance from the
+                                        liquid (surface; kernels/surface.cl surface_blocks_*) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */

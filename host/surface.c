@@ -43,7 +43,7 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     return 0;
 }
 
-int amsph_surface_check_grid(const amsph_sim *s)
+static int check_grid(const amsph_sim *s)
 {
     const grid_geometry *g = &s->grid.geometry;
     const int span = 2 * s->surface.reach + 1;
@@ -54,6 +54,23 @@ int amsph_surface_check_grid(const amsph_sim *s)
                                    "domain or lower surface.h_over_dx",
                                    amsph_support_over_h(s->config.kernel) * s->surface.h, span,
                                    (double)g->cell_size, d, g->ncell[d]);
+    return 0;
+}
+
+int amsph_surface_allocate(amsph_sim *s)
+{
+    AMSPH_CHECK(check_grid(s));
+    const grid_geometry *g = &s->grid.geometry;
+    surface_params *p = &s->surface;
+    size_t blocks = 1;
+    for (int d = 0; d < 3; ++d) {
+        /* whole blocks of `reach` cells; the last takes the remainder (kernels/surface.cl) */
+        p->blocks[d] = g->ncell[d] / p->reach > 1 ? g->ncell[d] / p->reach : 1;
+        blocks *= (size_t)p->blocks[d];
+    }
+    p->near_blocks = SURFACE_NEAR_BLOCKS;
+    for (int k = 0; k < 2; ++k)
+        AMSPH_CHECK(amsph_buffer_alloc(s->backend, blocks * sizeof(int), &s->surface_blocks[k]));
     return 0;
 }
 
@@ -72,7 +89,8 @@ static amsph_arg temperature(amsph_sim *s)
 /* The reaction of the surface tension on the grains (kernels/surface.cl,
  * surface_grain_reaction): the pull of the liquid on every solid particle,
  * the sums of the pulls and of their weights, and the grains' share. */
-static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_arg cell_start, amsph_arg params)
+static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_arg cell_start, amsph_arg away,
+                          amsph_arg params)
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
@@ -82,7 +100,7 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                              field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
                              field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_CURVATURE),
                              field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
-                             amsph_arg_buffer(s->materials), params, amsph_arg_buffer(s->contact_pull)));
+                             amsph_arg_buffer(s->materials), away, params, amsph_arg_buffer(s->contact_pull)));
     double sum[4] = {0.0, 0.0, 0.0, 0.0}; /* the net pull (3) and the solids' weight */
     for (int c = 0; c < 4; ++c) {
         if (c >= s->config.dim && c < 3)
@@ -98,6 +116,32 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                         field(s, AMSPH_FIELD_ACCELERATION));
 }
 
+/* Each block's distance from the nearest liquid, in blocks (kernels/surface.cl,
+ * surface_blocks_*): the liquid counted per block, then spread along each
+ * axis in turn between the two block buffers; *away is the one that ends
+ * with the distances. */
+static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_arg params, amsph_buffer **away)
+{
+    amsph_backend *b = s->backend;
+    const int n = s->particles.n;
+    const surface_params *p = &s->surface;
+    const int blocks = p->blocks[0] * p->blocks[1] * p->blocks[2];
+    amsph_buffer *from = s->surface_blocks[0], *to = s->surface_blocks[1];
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_clear", blocks, params, amsph_arg_buffer(from)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_mark", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
+                             amsph_arg_buffer(s->materials), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
+                             params, amsph_arg_buffer(from)));
+    for (int axis = 0; axis < s->config.dim; ++axis) {
+        AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_spread", blocks, amsph_arg_buffer(from), amsph_arg_int(axis),
+                                 amsph_arg_int(axis == 0), grid, params, amsph_arg_buffer(to)));
+        amsph_buffer *swap = from;
+        from = to;
+        to = swap;
+    }
+    *away = from;
+    return 0;
+}
+
 int amsph_surface_forces(amsph_sim *s)
 {
     amsph_backend *b = s->backend;
@@ -107,15 +151,19 @@ int amsph_surface_forces(amsph_sim *s)
     const amsph_arg cells = amsph_arg_buffer(s->grid.cell);
     const amsph_arg cell_start = amsph_arg_buffer(s->grid.cell_start);
     const amsph_arg materials = amsph_arg_buffer(s->materials);
+    amsph_buffer *away_buffer;
+    AMSPH_CHECK(find_liquid_blocks(s, grid, params, &away_buffer));
+    const amsph_arg away = amsph_arg_buffer(away_buffer);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start,
-                             materials, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+                             materials, away, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_MATERIAL), cells,
-                             amsph_arg_int(n), grid, cell_start, materials, params, field(s, AMSPH_FIELD_NORMAL),
-                             field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
+                             amsph_arg_int(n), grid, cell_start, materials, away, params,
+                             field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
+                             field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
     if (s->surface.wetting)
         AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_wetting", n, field(s, AMSPH_FIELD_POSITION),
                                  field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
@@ -129,7 +177,7 @@ int amsph_surface_forces(amsph_sim *s)
                              field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
                              field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                              amsph_arg_buffer(s->materials), cells, amsph_arg_int(n), grid,
-                             cell_start, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
+                             cell_start, away, params, field(s, AMSPH_FIELD_RAW_CURVATURE)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                         field(s, AMSPH_FIELD_MASS), temperature(s),
@@ -141,7 +189,7 @@ int amsph_surface_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_SURFACE_TENSION)));
     /* with a gas the CSF force is on the liquid-gas pairs (Fuchs et al. 2022 Eq. 24) and left as it is */
     return s->config.grains.enabled && s->surface.tension && !s->surface.gas
-               ? grain_reaction(s, cells, grid, cell_start, params)
+               ? grain_reaction(s, cells, grid, cell_start, away, params)
                : 0;
 }
 

@@ -7,9 +7,10 @@
 
 /* Fills s->surface from the case and adds the module's fields. */
 int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h);
-/* Checks that the grid's cells serve the surface support (after the grid
+/* Checks that the grid's cells serve the surface support and allocates the
+ * blocks of cells that find the particles near the liquid (after the grid
  * is laid out). */
-int amsph_surface_check_grid(const amsph_sim *s);
+int amsph_surface_allocate(amsph_sim *s);
 /* Adds the surface forces to the acceleration of fluid particles, and
  * their reaction to that of grain particles (after the fluid forces and
  * the grain particles' forces, before the grains' sums). */

@@ -21,7 +21,9 @@
  * not the liquid's) does not bend the liquid's normal field. Its colour
  * gradient still counts solids and walls as material: in this single-phase
  * model the gas is the void, and the wetted base, where the liquid touches
- * the solid, is no liquid-gas surface. The gathers:
+ * the solid, is no liquid-gas surface. The gathers, over the particles near
+ * the liquid (blocks_from_liquid):
+ *   surface_blocks_*   each block of cells' distance from the nearest liquid
  *   surface_shepard    Gamma_a = sum_b V_b W_ab
  *   surface_normal     n_a (Eq. 3.26)
  *   surface_wetting    n^_a turned to the contact angle (Fuchs Eqs. 27-29; only
@@ -183,34 +185,146 @@ static inline int colour_material(GLOBAL const real *materials, GLOBAL const int
     return !material_is_gas(materials, material[b]);
 }
 
-/* Whether particle a takes the CSF force of surface_force: a liquid (fluid,
- * not gas) with Gamma_a >= min_shepard. */
+/* Whether particle a is a liquid: fluid, not gas. */
+static inline int is_liquid(GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials, int a)
+{
+    return kind[a] == KIND_FLUID && colour_material(materials, material, a);
+}
+
+/* Whether particle a takes the CSF force of surface_force: a liquid with
+ * Gamma_a >= min_shepard. */
 static inline int takes_surface_force(GLOBAL const int *kind, GLOBAL const int *material,
                                       GLOBAL const real *materials, GLOBAL const real *shepard,
                                       const surface_params *p, int a)
 {
-    return kind[a] == KIND_FLUID && colour_material(materials, material, a) && shepard[a] >= p->min_shepard;
+    return is_liquid(kind, material, materials, a) && shepard[a] >= p->min_shepard;
+}
+
+/* The particles near the liquid. The liquid's forces (surface_force) read
+ * the curvature of the particles within one surface support of it, which
+ * reads the normals within two supports, which read the Shepard sums
+ * within three; what lies farther reaches no liquid. The grid's cells are
+ * grouped into blocks of p.reach cells per axis, each at least one support
+ * wide, so a neighbour is at most one block away. surface_blocks_mark and
+ * surface_blocks_spread give every block its distance from the nearest
+ * block with a liquid particle, in blocks (Chebyshev: the largest of the
+ * axes' distances; larger than p.near_blocks + 1 counts as far). A particle
+ * k blocks away takes part in
+ *   the Shepard sums                  where k <= near_blocks,
+ *   the normals                       where k <= near_blocks - 1,
+ *   the curvature and the contact pull where k <= near_blocks - 2,
+ * and its terms are 0 elsewhere. The surface force's loop runs on liquid
+ * particles only. With near_blocks = SURFACE_NEAR_BLOCKS (3) the liquid's
+ * terms are those of passes over every particle, and in a scene that is
+ * mostly solid (a substrate under a melt pool, a powder bed) the passes
+ * cost in proportion to the melt. */
+#define SURFACE_FAR 0x40000000
+
+static inline int surface_block_count(const surface_params *p)
+{
+    return p->blocks[0] * p->blocks[1] * p->blocks[2];
+}
+
+/* The block of a cell (-1 for the cell of the particles that left the domain). */
+static inline int surface_block(const grid_geometry *g, const surface_params *p, int cell)
+{
+    if (cell < 0 || cell >= g->total_cells)
+        return -1;
+    int cc[3];
+    grid_cell_coords(g, cell, cc);
+    int k = 0;
+    for (int d = 2; d >= 0; --d) {
+        const int b = cc[d] / p->reach;
+        k = k * p->blocks[d] + (b < p->blocks[d] ? b : p->blocks[d] - 1);
+    }
+    return k;
+}
+
+/* The distance from the liquid, in blocks, of the particle in cell `cell`. */
+static inline int blocks_from_liquid(GLOBAL const int *blocks_away, const grid_geometry *g,
+                                     const surface_params *p, int cell)
+{
+    const int k = surface_block(g, p, cell);
+    return k < 0 ? SURFACE_FAR : blocks_away[k];
+}
+
+/* count[k] = 0 on every block, before surface_blocks_mark. */
+KERNEL void surface_blocks_clear(surface_params p, GLOBAL int *count)
+{
+    FOR_EACH_ITEM(k, surface_block_count(&p))
+    {
+        count[k] = 0;
+    }
+}
+
+/* count[k] = the liquid particles in block k. */
+KERNEL void surface_blocks_mark(GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials,
+                                GLOBAL const int *cell, int n, grid_geometry g, surface_params p,
+                                GLOBAL int *count)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        const int k = surface_block(&g, &p, cell[a]);
+        if (k >= 0 && is_liquid(kind, material, materials, a))
+            ATOMIC_INC(&count[k]);
+    }
+}
+
+/* One axis of the blocks' distance from the liquid, which separates axis by
+ * axis as the largest of the axes' distances does:
+ *   out[k] = min over |s| <= near_blocks + 1 of max(|s|, in[k + s e_axis]),
+ * k + s wrapped around a periodic axis and dropped past a closed one's
+ * ends; with from_count, in holds surface_blocks_mark's counts (a block
+ * with liquid is 0 blocks away, one without far). */
+KERNEL void surface_blocks_spread(GLOBAL const int *in, int axis, int from_count, grid_geometry g,
+                                  surface_params p, GLOBAL int *out)
+{
+    FOR_EACH_ITEM(k, surface_block_count(&p))
+    {
+        int stride = 1;
+        for (int d = 0; d < axis; ++d)
+            stride *= p.blocks[d];
+        const int blocks = p.blocks[axis], at = k / stride % blocks;
+        int nearest = SURFACE_FAR;
+        for (int s = -p.near_blocks - 1; s <= p.near_blocks + 1; ++s) {
+            int j = at + s;
+            if (g.periodic[axis])
+                j = (j % blocks + blocks) % blocks;
+            else if (j < 0 || j >= blocks)
+                continue;
+            const int value = in[k + (j - at) * stride];
+            const int away = from_count ? (value > 0 ? 0 : SURFACE_FAR) : value;
+            const int shift = s < 0 ? -s : s;
+            const int here = away > shift ? away : shift;
+            nearest = here < nearest ? here : nearest;
+        }
+        out[k] = nearest;
+    }
 }
 
 /* Gamma_a = sum_b V_b W_ab at h_st, over every particle of colour 1. */
 KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
                             GLOBAL const real *mass, GLOBAL const int *material, GLOBAL const int *cell,
                             int n, grid_geometry g, GLOBAL const int *cell_start,
-                            GLOBAL const real *materials, surface_params p, GLOBAL real *shepard)
+                            GLOBAL const real *materials, GLOBAL const int *blocks_away, surface_params p,
+                            GLOBAL real *shepard)
 {
     FOR_EACH_ITEM(a, n)
     {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        const real support2 = surface_support2(&p), support = sqrt(support2);
-        real x_a[3];
-        grid_point(position, a, x_a);
         real sum = REAL(0.0);
-        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
-        {
-            real r_ab[3], r2;
-            if (colour_material(materials, material, b) && grid_pair_within(&run, position, b, support2, r_ab, &r2))
-                sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
+        if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            real x_a[3];
+            grid_point(position, a, x_a);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (colour_material(materials, material, b) &&
+                    grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
+            }
         }
         shepard[a] = sum;
     }
@@ -238,36 +352,40 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
                            GLOBAL const real *mass, GLOBAL const real *shepard,
                            GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, GLOBAL const real *materials,
-                           surface_params p, GLOBAL real *normal,
+                           GLOBAL const int *blocks_away, surface_params p, GLOBAL real *normal,
                            GLOBAL real *unit_normal, GLOBAL real *normal_weight)
 {
     FOR_EACH_ITEM(a, n)
     {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        const real inv_gamma_a = REAL(1.0) / shepard[a];
         real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        const real support2 = surface_support2(&p), support = sqrt(support2);
-        real x_a[3];
-        grid_point(position, a, x_a);
-        const int material_a = colour_material(materials, material, a);
-        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
-        {
-            real r_ab[3], r2;
-            if (!material_a || !colour_material(materials, material, b) ||
-                !grid_pair_within(&run, position, b, support2, r_ab, &r2))
-                continue;
-            const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
-            const real v_b = mass[b] / density[b];
-            const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
-            for (int d = 0; d < 3; ++d) {
-                sum[d] += weight * r_ab[d];
-                grad_gamma[d] += v_b * f * r_ab[d];
+        /* no normal on gas, nor far from the liquid (n_a = 0, psi_a = 0) */
+        const int has_normal = colour_material(materials, material, a) &&
+                               blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 1;
+        if (has_normal) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            const real inv_gamma_a = REAL(1.0) / shepard[a];
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            real x_a[3];
+            grid_point(position, a, x_a);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (!colour_material(materials, material, b) ||
+                    !grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
+                const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
+                const real v_b = mass[b] / density[b];
+                const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
+                for (int d = 0; d < 3; ++d) {
+                    sum[d] += weight * r_ab[d];
+                    grad_gamma[d] += v_b * f * r_ab[d];
+                }
             }
         }
         const real size = sqrt(dot3(sum, sum));
-        const int inward = material_a && dot3(sum, grad_gamma) > REAL(0.0) && shepard[a] >= p.min_shepard;
+        const int inward = has_normal && dot3(sum, grad_gamma) > REAL(0.0) && shepard[a] >= p.min_shepard;
         const real psi = inward ? fmin(fmax(size * p.h / p.normal_cutoff - REAL(1.0), REAL(0.0)), REAL(1.0))
                                 : REAL(0.0);
         normal_weight[a] = psi;
@@ -350,7 +468,8 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
  * with one (Russell 2018 Eqs. 3.28, 3.29; Morris 2000 sums over those only):
  *   Gamma*_a = sum_b psi_b V_b W_ab,
  *   kappa_a  = (1/Gamma*_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
- * capped at |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4); 0 elsewhere.
+ * capped at |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4), within
+ * near_blocks - 2 blocks of the liquid (blocks_from_liquid); 0 elsewhere.
  * With the inward normal, a convex surface has kappa < 0 (a circle: -1/R).
  * A liquid with a contact angle sums over liquid b only (shapes_curvature). */
 KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *density,
@@ -358,14 +477,14 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
                               GLOBAL const real *normal_weight, GLOBAL const int *kind,
                               GLOBAL const int *material, GLOBAL const real *materials,
                               GLOBAL const int *cell, int n, grid_geometry g,
-                              GLOBAL const int *cell_start, surface_params p,
-                              GLOBAL real *curvature)
+                              GLOBAL const int *cell_start, GLOBAL const int *blocks_away,
+                              surface_params p, GLOBAL real *curvature)
 {
     FOR_EACH_ITEM(a, n)
     {
         real kappa = REAL(0.0);
         const real theta0 = contact_angle(kind, material, materials, &p, a);
-        if (normal_weight[a] > REAL(0.0)) {
+        if (normal_weight[a] > REAL(0.0) && blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 2) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
             const real support2 = surface_support2(&p), support = sqrt(support2);
@@ -460,8 +579,9 @@ static inline real interface_viscosity_alpha(GLOBAL const int *kind, GLOBAL cons
  *   grad T_a = (1/Gamma_a) sum_b V_b (T_b - T_a) grad_a W_ab,
  *   f_a += d sigma/dT (grad T_a - (grad T_a . n^_a) n^_a) |n_a|,
  * add f_a / rho_a to the acceleration (not of gas, which has colour 0 and
- * adds nothing to these sums). Every particle gets its smoothed
- * curvature and sigma(T) (outputs; the capillary time step reads sigma).
+ * adds nothing to these sums). Every liquid particle gets its smoothed
+ * curvature (0 elsewhere) and every particle sigma(T) (outputs; the
+ * capillary time step reads sigma).
  * A liquid with a contact angle smooths over liquid b only (shapes_curvature);
  * its n_a is the turned normal of surface_normal. With
  * p.interface_viscosity, the interface viscosity (interface_viscosity_factor)
@@ -478,8 +598,6 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
 {
     FOR_EACH_ITEM(a, n)
     {
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
         const real t_a = p.temperature ? temperature[a] : REAL(0.0);
         const real theta0 = contact_angle(kind, material, materials, &p, a);
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
@@ -487,45 +605,49 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
         real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 19 (with a gas) */
         real damping[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 31 */
         const real alpha_a = interface_viscosity_alpha(kind, material, materials, normal, &p, a);
-        const real support2 = surface_support2(&p), support = sqrt(support2);
-        real x_a[3];
-        grid_point(position, a, x_a);
-        FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
-        {
-            real r_ab[3], r2;
-            if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
-                continue;
-            const real r = sqrt(r2);
-            if (alpha_a > REAL(0.0) && kind[b] == KIND_FLUID && b != a) {
-                real u_ab[3];
-                for (int d = 0; d < 3; ++d)
-                    u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
-                const real c_mean = REAL(0.5) * (material_value(materials, material[a], MATERIAL_SOUND_SPEED) +
-                                                 material_value(materials, material[b], MATERIAL_SOUND_SPEED));
-                const real v = mass[b] * interface_viscosity_factor(alpha_a, p.h, c_mean,
-                                                                    REAL(0.5) * (density[a] + density[b]),
-                                                                    dot3(u_ab, r_ab), r2,
-                                                                    smoothing_grad_factor(r, p.h));
-                for (int d = 0; d < 3; ++d)
-                    damping[d] += v * r_ab[d];
-            }
-            if (!colour_material(materials, material, b)) {
-                const real c = interface_colour_factor(mass[a], density[a], mass[b], density[b],
-                                                       smoothing_grad_factor(r, p.h));
-                for (int d = 0; d < 3; ++d)
-                    grad_c[d] += c * r_ab[d];
-                continue;
-            }
-            const real v_b = mass[b] / density[b];
-            if (normal_weight[b] > REAL(0.0) && shapes_curvature(theta0, kind[b])) {
-                const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
-                gamma_star += w;
-                kappa_sum += w * raw_curvature[b];
-            }
-            if (p.marangoni) {
-                const real weight = v_b * (temperature[b] - t_a) * smoothing_grad_factor(r, p.h);
-                for (int d = 0; d < 3; ++d)
-                    grad_t[d] += weight * r_ab[d];
+        if (is_liquid(kind, material, materials, a)) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            const real support2 = surface_support2(&p), support = sqrt(support2);
+            real x_a[3];
+            grid_point(position, a, x_a);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
+                const real r = sqrt(r2);
+                if (alpha_a > REAL(0.0) && kind[b] == KIND_FLUID && b != a) {
+                    real u_ab[3];
+                    for (int d = 0; d < 3; ++d)
+                        u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
+                    const real c_mean = REAL(0.5) * (material_value(materials, material[a], MATERIAL_SOUND_SPEED) +
+                                                     material_value(materials, material[b], MATERIAL_SOUND_SPEED));
+                    const real v = mass[b] * interface_viscosity_factor(alpha_a, p.h, c_mean,
+                                                                        REAL(0.5) * (density[a] + density[b]),
+                                                                        dot3(u_ab, r_ab), r2,
+                                                                        smoothing_grad_factor(r, p.h));
+                    for (int d = 0; d < 3; ++d)
+                        damping[d] += v * r_ab[d];
+                }
+                if (!colour_material(materials, material, b)) {
+                    const real c = interface_colour_factor(mass[a], density[a], mass[b], density[b],
+                                                           smoothing_grad_factor(r, p.h));
+                    for (int d = 0; d < 3; ++d)
+                        grad_c[d] += c * r_ab[d];
+                    continue;
+                }
+                const real v_b = mass[b] / density[b];
+                if (normal_weight[b] > REAL(0.0) && shapes_curvature(theta0, kind[b])) {
+                    const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
+                    gamma_star += w;
+                    kappa_sum += w * raw_curvature[b];
+                }
+                if (p.marangoni) {
+                    const real weight = v_b * (temperature[b] - t_a) * smoothing_grad_factor(r, p.h);
+                    for (int d = 0; d < 3; ++d)
+                        grad_t[d] += weight * r_ab[d];
+                }
             }
         }
         const real kappa = gamma_star > REAL(0.0) ? kappa_sum / gamma_star : REAL(0.0);
@@ -602,7 +724,8 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                                  GLOBAL const real *normal_weight, GLOBAL const real *curvature,
                                  GLOBAL const real *tension, GLOBAL const int *cell, int n,
                                  grid_geometry g, GLOBAL const int *cell_start,
-                                 GLOBAL const real *materials, surface_params p, GLOBAL real *pull)
+                                 GLOBAL const real *materials, GLOBAL const int *blocks_away,
+                                 surface_params p, GLOBAL real *pull)
 {
     FOR_EACH_ITEM(i, n)
     {
@@ -612,7 +735,7 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
         if (takes_surface_force(kind, material, materials, shepard, &p, i)) {
             for (int d = 0; d < 3; ++d)
                 force[d] = -tension[i] * curvature[i] * v_i * normal[3 * i + d];
-        } else if (solid) {
+        } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2) {
             int cc[3];
             grid_cell_coords(&g, cell[i], cc);
             const real support2 = surface_support2(&p), support = sqrt(support2);

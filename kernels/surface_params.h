@@ -22,6 +22,15 @@ typedef struct {
     int gas;                         /* 1: the case has a gas (the CSF force of Fuchs et al. 2022 Eq. 24) */
     int wetting;                     /* 1: a material has a contact angle (Fuchs et al. 2022
                                         Eqs. 27-29); 0: every particle is one colour */
+    int blocks[3];                   /* blocks of `reach` cells per axis (1 on unused axes; the
+                                        last block of an axis takes the remaining cells) */
+    int near_blocks;                 /* particles more blocks than this from the nearest liquid
+                                        take no part in the surface terms (SURFACE_NEAR_BLOCKS) */
 } surface_params;
+
+/* A particle's Shepard sum reaches the liquid's forces through three
+ * gathers of the surface support (normal, curvature, force), and a block is
+ * at least one support wide, so three blocks suffice. */
+#define SURFACE_NEAR_BLOCKS 3
 
 #endif

@@ -391,6 +391,45 @@ static void test_contact_line_normal(double theta0)
     amsph_host_free(&h);
 }
 
+/* The surface passes leave out the particles more than SURFACE_NEAR_BLOCKS
+ * blocks from the liquid (kernels/surface.cl, blocks_from_liquid); the
+ * liquid must move as it does when every particle takes part (near_blocks
+ * beyond the grid). The sessile droplet's wall reaches 4 to 5 blocks past
+ * the drop on each side; at theta0 = 0 the liquid's curvature sums over the
+ * wall's surface normals beside it too. Fails with one block too few. */
+static void test_passes_near_liquid(double theta0)
+{
+    static const amsph_field_id fields[] = {AMSPH_FIELD_POSITION, AMSPH_FIELD_VELOCITY, AMSPH_FIELD_DENSITY,
+                                            AMSPH_FIELD_CURVATURE};
+    amsph_case c;
+    if (sessile_case(theta0, 0.1, &c))
+        return;
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        amsph_host_particles h[2] = {{0}};
+        int have = 0;
+        for (int every = 0; every < 2 && b; ++every) {
+            amsph_sim s;
+            if (amsph_sim_create(&c, b, &s) == 0) {
+                if (every)
+                    s.surface.near_blocks = 1000;
+                have += amsph_sim_advance(&s, c.end_time, NULL, NULL) == 0 && download(&s, &h[every]) == 0;
+            }
+            CHECK(have == every + 1, "theta0 %g: %s", theta0, amsph_last_error());
+            amsph_sim_free(&s);
+        }
+        for (size_t f = 0; f < sizeof fields / sizeof fields[0] && have == 2; ++f) {
+            double largest, diff;
+            testing_field_difference(&h[0], &h[1], fields[f], &largest, &diff);
+            CHECK(diff == 0.0, "theta0 %g, backend %d: %s differs by %g (largest %g) when every particle "
+                  "takes part", theta0, k, amsph_fields[fields[f]].name, diff, largest);
+        }
+        for (int every = 0; every < 2; ++every)
+            amsph_host_free(&h[every]);
+        amsph_backend_destroy(b);
+    }
+}
+
 /* Contact angle of a sessile drop from its particles: a circle (Kasa's
  * algebraic least-squares fit) through the free-surface fluid particles
  * (fewer than 11 particles of any kind within 2.1 dx, a lattice interior
@@ -612,6 +651,8 @@ int main(void)
     check_backends_agree("sessile_cap_2d.yaml");
     test_contact_line_normal(60.0);
     test_contact_line_normal(120.0);
+    test_passes_near_liquid(0.0);
+    test_passes_near_liquid(60.0);
     test_interface_viscosity();
     test_sessile_droplet();
     test_sessile_cap();
