@@ -88,6 +88,16 @@ static inline real surface_support2(const surface_params *p)
     return SUPPORT_OVER_H * SUPPORT_OVER_H * p->h * p->h;
 }
 
+/* The centre of particle a's loop over its surface support: its cell's
+ * coordinates cc and its position x; returns the squared support radius. */
+static inline real surface_loop_centre(const grid_geometry *g, const surface_params *p, GLOBAL const int *cell,
+                                       GLOBAL const real *position, int a, int cc[3], real x[3])
+{
+    grid_cell_coords(g, cell[a], cc);
+    grid_point(position, a, x);
+    return surface_support2(p);
+}
+
 /* The linear transition function f[x, x1, x2] of Fuchs et al. 2022 Eq. 21:
  * 0 below x1, 1 above x2, linear between (x1 < x2). */
 static inline real transition(real x, real x1, real x2)
@@ -314,10 +324,8 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         real sum = REAL(0.0);
         if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks) {
             int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real support2 = surface_support2(&p), support = sqrt(support2);
             real x_a[3];
-            grid_point(position, a, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 real r_ab[3], r2;
@@ -364,11 +372,9 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
                                blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 1;
         if (has_normal) {
             int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real inv_gamma_a = REAL(1.0) / shepard[a];
-            const real support2 = surface_support2(&p), support = sqrt(support2);
             real x_a[3];
-            grid_point(position, a, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
+            const real inv_gamma_a = REAL(1.0) / shepard[a];
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 real r_ab[3], r2;
@@ -427,11 +433,9 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
         const real theta0 = contact_angle(kind, material, materials, &p, a);
         if (theta0 > REAL(0.0) && normal_weight[a] > REAL(0.0)) {
             int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real support2 = surface_support2(&p), support = sqrt(support2);
-            const real v_a = mass[a] / density[a];
             real x_a[3];
-            grid_point(position, a, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
+            const real v_a = mass[a] / density[a];
             real c_sf = REAL(0.0);
             real grad_sf[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, outward[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
@@ -486,10 +490,8 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
         const real theta0 = contact_angle(kind, material, materials, &p, a);
         if (normal_weight[a] > REAL(0.0) && blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 2) {
             int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real support2 = surface_support2(&p), support = sqrt(support2);
             real x_a[3];
-            grid_point(position, a, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             real gamma_star = REAL(0.0), divergence = REAL(0.0);
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
@@ -607,10 +609,8 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
         const real alpha_a = interface_viscosity_alpha(kind, material, materials, normal, &p, a);
         if (is_liquid(kind, material, materials, a)) {
             int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const real support2 = surface_support2(&p), support = sqrt(support2);
             real x_a[3];
-            grid_point(position, a, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 real r_ab[3], r2;
@@ -737,10 +737,8 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                 force[d] = -tension[i] * curvature[i] * v_i * normal[3 * i + d];
         } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2) {
             int cc[3];
-            grid_cell_coords(&g, cell[i], cc);
-            const real support2 = surface_support2(&p), support = sqrt(support2);
             real x_r[3];
-            grid_point(position, i, x_r);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, i, cc, x_r), support = sqrt(support2);
             FOR_EACH_NEIGHBOUR_NEAR(a, run, &g, cc, x_r, cell_start, p.reach, support)
             {
                 real r_ra[3], r2, n_hat[3];
