@@ -62,15 +62,13 @@ int amsph_surface_allocate(amsph_sim *s)
     AMSPH_CHECK(check_grid(s));
     const grid_geometry *g = &s->grid.geometry;
     surface_params *p = &s->surface;
-    size_t blocks = 1;
-    for (int d = 0; d < 3; ++d) {
-        /* whole blocks of `reach` cells; the last takes the remainder (kernels/surface.cl) */
+    /* whole blocks of `reach` cells; the last takes the remainder (kernels/surface.cl) */
+    for (int d = 0; d < 3; ++d)
         p->blocks[d] = g->ncell[d] / p->reach > 1 ? g->ncell[d] / p->reach : 1;
-        blocks *= (size_t)p->blocks[d];
-    }
     p->near_blocks = SURFACE_NEAR_BLOCKS;
     for (int k = 0; k < 2; ++k)
-        AMSPH_CHECK(amsph_buffer_alloc(s->backend, blocks * sizeof(int), &s->surface_blocks[k]));
+        AMSPH_CHECK(amsph_buffer_alloc(s->backend, (size_t)surface_block_count(p) * sizeof(int),
+                                       &s->surface_blocks[k]));
     return 0;
 }
 
@@ -124,10 +122,9 @@ static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_arg params, am
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
-    const surface_params *p = &s->surface;
-    const int blocks = p->blocks[0] * p->blocks[1] * p->blocks[2];
+    const int blocks = surface_block_count(&s->surface);
     amsph_buffer *from = s->surface_blocks[0], *to = s->surface_blocks[1];
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_clear", blocks, params, amsph_arg_buffer(from)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", blocks, amsph_arg_buffer(from), amsph_arg_int(blocks), amsph_arg_uint(0)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_mark", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                              amsph_arg_buffer(s->materials), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                              params, amsph_arg_buffer(from)));

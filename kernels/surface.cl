@@ -230,11 +230,6 @@ static inline int takes_surface_force(GLOBAL const int *kind, GLOBAL const int *
  * cost in proportion to the melt. */
 #define SURFACE_FAR 0x40000000
 
-static inline int surface_block_count(const surface_params *p)
-{
-    return p->blocks[0] * p->blocks[1] * p->blocks[2];
-}
-
 /* The block of a cell (-1 for the cell of the particles that left the domain). */
 static inline int surface_block(const grid_geometry *g, const surface_params *p, int cell)
 {
@@ -258,16 +253,7 @@ static inline int blocks_from_liquid(GLOBAL const int *blocks_away, const grid_g
     return k < 0 ? SURFACE_FAR : blocks_away[k];
 }
 
-/* count[k] = 0 on every block, before surface_blocks_mark. */
-KERNEL void surface_blocks_clear(surface_params p, GLOBAL int *count)
-{
-    FOR_EACH_ITEM(k, surface_block_count(&p))
-    {
-        count[k] = 0;
-    }
-}
-
-/* count[k] = the liquid particles in block k. */
+/* count[k] = the liquid particles in block k (count zeroed before). */
 KERNEL void surface_blocks_mark(GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials,
                                 GLOBAL const int *cell, int n, grid_geometry g, surface_params p,
                                 GLOBAL int *count)

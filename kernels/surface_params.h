@@ -33,4 +33,10 @@ typedef struct {
  * at least one support wide, so three blocks suffice. */
 #define SURFACE_NEAR_BLOCKS 3
 
+/* The number of blocks, on the host and in the kernels. */
+static inline int surface_block_count(const surface_params *p)
+{
+    return p->blocks[0] * p->blocks[1] * p->blocks[2];
+}
+
 #endif
