@@ -70,6 +70,7 @@ static void test_spot_weld(void)
     if (testing_load_case("../am/spot_weld_304_3d.yaml", &c))
         return;
     c.dx = 1.5e-4;
+    c.laser.bin_size = c.dx;
     run_hard_case(&c, "spot weld");
 }
 

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Fusion zone of a spot weld: radius and depth of the metal that melted.
+
+    tools/fusion_zone.py OUTDIR [--solidus 1673] [--axis 0,0] [--csv fz.csv]
+
+The fusion zone is every fluid or solid particle whose peak_temperature
+reached the solidus (He, Fuerschbach & DebRoy 2003 etch the weld's cross
+section; Russell 2018 §4.4 reads it from the particles the same way). For each
+snapshot of OUTDIR it prints two readings, each particle standing for a cell
+dx wide:
+
+  final    the particles where they are: radius = the largest distance from
+           the beam axis + dx/2, depth = the initial surface - the lowest
+           particle + dx/2. Liquid that flowed out over the solid before it
+           froze counts where it froze.
+  initial  the same particles where they started (matched by id in the first
+           snapshot): the fusion boundary in the base metal, which no flow
+           moves.
+  isotherm the solidus isotherm of the peak temperature in the base metal,
+           read between lattice points: radius = sqrt(A / pi) of the area A
+           (dx^2 each) of the top layer's fused particles (3D; 2D: half their
+           width), depth = where the peak temperature, averaged over the
+           columns nearest the axis, falls through the solidus (linear
+           between layers; 0 if the top layer did not reach it, the lowest
+           layer's bottom if every layer did).
+
+The initial surface is the highest non-wall particle of the first snapshot +
+dx/2; the beam axis is vertical (the last axis) through --axis.
+"""
+import argparse
+import glob
+import os
+
+import h5py
+import numpy as np
+
+WALL = 1  # particle kind of a wall (kernels/kinds.h)
+
+
+def read(path):
+    with h5py.File(path, "r") as f:
+        return {"time": float(f.attrs["time"]), "dim": int(f.attrs["dim"]), "dx": float(f.attrs["dx"]),
+                "position": f["position"][()].astype(float), "kind": f["kind"][()], "id": f["id"][()],
+                "peak": f["peak_temperature"][()].astype(float)}
+
+
+def extent(position, axis, surface, dx):
+    """Radius from the vertical axis through `axis` and depth below `surface`."""
+    up = position.shape[1] - 1
+    across = position[:, :up] - axis[:up]
+    radius = np.sqrt((across ** 2).sum(axis=1)).max() + 0.5 * dx
+    depth = surface - position[:, up].min() + 0.5 * dx
+    return radius, depth
+
+
+def isotherm(start, peak, solidus, axis, surface, dx):
+    """Radius and depth of the solidus isotherm of the peak temperature in the
+    initial lattice (start: initial positions of the non-wall particles)."""
+    up = start.shape[1] - 1
+    across = np.sqrt(((start[:, :up] - axis[:up]) ** 2).sum(axis=1))
+    fused = peak >= solidus
+    top = start[:, up] > surface - dx
+    count = (fused & top).sum()
+    radius = dx * np.sqrt(count / np.pi) if up == 2 else 0.5 * dx * count
+    column = across < across.min() + 0.01 * dx
+    layers = np.unique(np.round(start[column, up] / (0.01 * dx)))[::-1] * 0.01 * dx
+    profile = [(z, peak[column][np.abs(start[column, up] - z) < 0.1 * dx].mean()) for z in layers]
+    if profile[0][1] < solidus:
+        return radius, 0.0
+    for (z0, t0), (z1, t1) in zip(profile, profile[1:]):
+        if t1 < solidus:
+            return radius, surface - (z0 + (solidus - t0) * (z1 - z0) / (t1 - t0))
+    return radius, surface - (profile[-1][0] - 0.5 * dx)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("outdir", help="output folder of amsph run (snap_*.h5)")
+    ap.add_argument("--solidus", type=float, default=1673.0, help="solidus temperature, K (304 steel: 1673)")
+    ap.add_argument("--axis", default="0,0", help="beam axis: its horizontal coordinates, m (default 0,0)")
+    ap.add_argument("--csv", help="also write the table to this CSV file")
+    args = ap.parse_args()
+
+    snapshots = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
+    if not snapshots:
+        raise SystemExit(f"{args.outdir} holds no snap_*.h5: give the output folder of 'amsph run'")
+    first = read(snapshots[0])
+    up = first["dim"] - 1
+    axis = np.array([float(v) for v in args.axis.split(",")] + [0.0])
+    if len(axis) != first["dim"]:
+        raise SystemExit(f"--axis takes {up} coordinate(s) for a {first['dim']}D run, got '{args.axis}'")
+    material = first["kind"] != WALL
+    surface = first["position"][material, up].max() + 0.5 * first["dx"]
+    start = dict(zip(first["id"].tolist(), first["position"]))
+
+    rows = ["time_s,fused_particles,radius_final_m,depth_final_m,radius_initial_m,depth_initial_m,"
+            "radius_isotherm_m,depth_isotherm_m"]
+    print(f"{'t (ms)':>8} {'fused':>6} {'radius: final':>14} {'initial':>8} {'isotherm':>9} "
+          f"{'depth: final':>13} {'initial':>8} {'isotherm':>9}  (mm)")
+    for path in snapshots:
+        s = read(path)
+        fused = (s["kind"] != WALL) & (s["peak"] >= args.solidus)
+        if not fused.any():
+            continue
+        final = extent(s["position"][fused], axis, surface, s["dx"])
+        origin = np.array([start[i] for i in s["id"].tolist()])
+        initial = extent(origin[fused], axis, surface, s["dx"])
+        material = s["kind"] != WALL
+        iso = isotherm(origin[material], s["peak"][material], args.solidus, axis, surface, s["dx"])
+        rows.append(f"{s['time']:.6g},{fused.sum()}," + ",".join(f"{v:.6g}" for v in (*final, *initial, *iso)))
+        print(f"{s['time'] * 1e3:8.3f} {fused.sum():6d} {final[0] * 1e3:14.3f} {initial[0] * 1e3:8.3f} "
+              f"{iso[0] * 1e3:9.3f} {final[1] * 1e3:13.3f} {initial[1] * 1e3:8.3f} {iso[1] * 1e3:9.3f}")
+    if args.csv:
+        with open(args.csv, "w") as f:
+            f.write("\n".join(rows) + "\n")
+
+
+if __name__ == "__main__":
+    main()
