@@ -286,8 +286,8 @@ static void report_end(const cli_options *o, const amsph_sim *sim)
         fprintf(stderr, "amsph: stopped at step %lld (t = %.6g s), --max-steps; restart from %s/checkpoint.h5\n",
                 sim->step, sim->time, o->outdir);
     else
-        fprintf(stderr, "amsph: done, %lld steps, %lld particles removed; output in %s\n", sim->step,
-                sim->particles.removed, o->outdir);
+        fprintf(stderr, "amsph: done, %lld steps, %lld particles left the domain, %lld evaporated; output in %s\n",
+                sim->step, sim->particles.removed, sim->evaporated_particles, o->outdir);
 }
 
 /* Loads what a run needs before any work: the case, the checkpoint to
