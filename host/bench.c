@@ -111,22 +111,8 @@ static int count_particles(const amsph_case *c, long long *n)
     return status;
 }
 
-/* The spacing dx times `factor`, with the lengths that the case sizes in dx
- * (host/case.c gives them dx by default, and they are numerical, not the
- * scene's): the laser bins, the grains' contact distance (Fuchs et al. 2022
- * Eq. 40: dx) and the barrier forces' reach (Fuchs Eq. 34: dx / 2). The
- * bodies, powder-bed grains included, keep their sizes: the scene is the
- * same at a finer or coarser resolution. */
-static void scale_spacing(amsph_case *c, double factor)
-{
-    c->dx *= factor;
-    c->laser.bin_size *= factor;
-    c->grains.distance *= factor;
-    c->fluid.barrier_distance *= factor;
-}
-
 /* The case at a spacing that gives about `target` particles: dx scaled by
- * (n / target)^(1/dim) (scale_spacing), repeated while the count is more
+ * (n / target)^(1/dim) (amsph_case_set_spacing), repeated while the count is more
  * than 2% off (walls and block edges grow more slowly than the volume). */
 static int scale_to_count(const amsph_case *c, long long target, amsph_case *scaled)
 {
@@ -135,7 +121,7 @@ static int scale_to_count(const amsph_case *c, long long target, amsph_case *sca
     AMSPH_CHECK(count_particles(scaled, &n));
     for (int k = 0; k < 4 && fabs((double)n / (double)target - 1.0) > 0.02; ++k) {
         const double factor = pow((double)n / (double)target, 1.0 / scaled->dim);
-        scale_spacing(scaled, factor);
+        amsph_case_set_spacing(scaled, scaled->dx * factor);
         if (count_particles(scaled, &n)) {
             char message[1024];
             snprintf(message, sizeof message, "%s", amsph_last_error());

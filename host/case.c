@@ -2336,6 +2336,15 @@ static void print_allowed(FILE *f, const key_spec *k)
         fprintf(f, "%s%s", sep, k->rule);
 }
 
+void amsph_case_set_spacing(amsph_case *c, double dx)
+{
+    const double factor = dx / c->dx;
+    c->dx = dx;
+    c->laser.bin_size *= factor;
+    c->grains.distance *= factor;
+    c->fluid.barrier_distance *= factor;
+}
+
 void amsph_case_print_keys(void *file)
 {
     FILE *f = file;

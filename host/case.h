@@ -292,6 +292,14 @@ int amsph_case_load(const char *path, amsph_case *c, char *err, size_t errlen);
 int amsph_case_parse(const char *text, size_t len, const char *name, amsph_case *c, char *err,
                      size_t errlen);
 
+/* Sets the spacing to dx and scales the lengths that the case sizes in dx
+ * along (host/case.c gives them dx by default, and they are numerical, not
+ * the scene's): the laser bins, the grains' contact distance (Fuchs et al.
+ * 2022 Eq. 40: dx) and the barrier forces' reach (Fuchs Eq. 34: dx / 2).
+ * The bodies, powder-bed grains included, keep their sizes: the scene is
+ * the same at a finer or coarser resolution. */
+void amsph_case_set_spacing(amsph_case *c, double dx);
+
 /* Writes the Markdown key reference (one table row per key, with unit and
  * default) to the stream; README.md carries its output. */
 void amsph_case_print_keys(void *file /* FILE * */);

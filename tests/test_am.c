@@ -69,8 +69,7 @@ static void test_spot_weld(void)
     /* cases/am/, beside the validation cases testing_load_case reads */
     if (testing_load_case("../am/spot_weld_304_3d.yaml", &c))
         return;
-    c.dx = 1.5e-4;
-    c.laser.bin_size = c.dx;
+    amsph_case_set_spacing(&c, 1.5e-4);
     run_hard_case(&c, "spot weld");
 }
 
@@ -108,8 +107,7 @@ static void test_track(void)
     amsph_case c;
     if (testing_load_case("../am/track_2d_50W.yaml", &c))
         return;
-    c.dx = 1.0e-5;
-    c.laser.bin_size = c.dx;
+    amsph_case_set_spacing(&c, 1.0e-5);
     c.fluid.max_density_error = 0.1;
     shorten_track(&c, 0.15e-3, 0.1e-3);
     run_hard_case(&c, "2D track, 50 W");
@@ -140,8 +138,7 @@ static void test_ded(void)
     amsph_case c;
     if (testing_load_case("../am/ded_grains_2d.yaml", &c))
         return;
-    c.dx = 4.0e-6;
-    c.fluid.barrier_distance = 0.5 * c.dx;
+    amsph_case_set_spacing(&c, 4.0e-6);
     c.end_time = 1.2e-5;
     amsph_backend *b = testing_backend(0);
     amsph_sim s;

@@ -825,6 +825,10 @@ static void check_laser2d(const amsph_case *c)
     expect(vec_is(l->start, 0.5, 0.5, 0) && l->n_path == 0, "start, no path");
     expect(l->on_time == 0 && isinf(l->off_time) && l->ramp_time == 0, "schedule defaults");
     expect(near(l->bin_size, c->dx), "bin_size default: dx");
+    static amsph_case finer;
+    finer = *c;
+    amsph_case_set_spacing(&finer, 0.5 * c->dx);
+    expect(near(finer.dx, 0.5 * c->dx) && near(finer.laser.bin_size, 0.5 * c->dx), "bin_size follows the spacing");
 }
 
 /* 2D with a circle, a tank open at the top, periodic x and gravity. */
@@ -954,6 +958,10 @@ static void check_gas2d(const amsph_case *c)
     expect(f->smoothing_length == SMOOTHING_FIXED && near(f->max_smoothing_ratio, 1.1), "smoothing length default");
     expect(near(f->barrier_stiffness, 2) && near(f->barrier_damping, 0.5) && near(f->barrier_distance, 0.005),
            "barrier");
+    static amsph_case finer;
+    finer = *c;
+    amsph_case_set_spacing(&finer, 0.5 * c->dx);
+    expect(near(finer.fluid.barrier_distance, 0.0025), "barrier distance follows the spacing");
     expect(c->materials[0].phase == AMSPH_MATERIAL_LIQUID && c->materials[1].phase == AMSPH_MATERIAL_GAS, "phase");
     expect(!c->geometry[0].fill && c->geometry[1].fill, "fill");
 }

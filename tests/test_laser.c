@@ -338,8 +338,7 @@ static int load_slab(const char *file, double dx, amsph_case *c)
 {
     if (testing_load_case(file, c))
         return 1;
-    c->dx = dx;
-    c->laser.bin_size = dx;
+    amsph_case_set_spacing(c, dx);
     c->laser.start[0] -= 0.5 * dx;
     if (c->dim == 3)
         c->laser.start[1] -= 0.5 * dx;

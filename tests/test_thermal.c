@@ -444,8 +444,7 @@ static double slab_run(const char *file, double dx, amsph_sim *s, amsph_backend 
     amsph_case c;
     if (testing_load_case(file, &c))
         return NAN;
-    c.dx = dx;
-    c.laser.bin_size = dx; /* its default is the case's dx */
+    amsph_case_set_spacing(&c, dx);
     *b = testing_backend(0);
     CHECK_OK(amsph_sim_create(&c, *b, s));
     CHECK_OK(amsph_sim_advance(s, c.end_time, NULL, NULL));
