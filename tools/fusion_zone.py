@@ -6,7 +6,7 @@
 The fusion zone is every fluid or solid particle whose peak_temperature
 reached the solidus (He, Fuerschbach & DebRoy 2003 etch the weld's cross
 section; Russell 2018 §4.4 reads it from the particles the same way). For each
-snapshot of OUTDIR it prints two readings, each particle standing for a cell
+snapshot of OUTDIR it prints three readings, each particle standing for a cell
 dx wide:
 
   final    the particles where they are: radius = the largest distance from
@@ -25,23 +25,23 @@ dx wide:
            layer's bottom if every layer did).
 
 The initial surface is the highest non-wall particle of the first snapshot +
-dx/2; the beam axis is vertical (the last axis) through --axis.
+dx/2; the beam axis is vertical (the last axis: y in 2D, z in 3D) through
+--axis.
 """
 import argparse
 import glob
 import os
 
-import h5py
 import numpy as np
+
+from track_metrics import snapshot
 
 WALL = 1  # particle kind of a wall (kernels/kinds.h)
 
 
-def read(path):
-    with h5py.File(path, "r") as f:
-        return {"time": float(f.attrs["time"]), "dim": int(f.attrs["dim"]), "dx": float(f.attrs["dx"]),
-                "position": f["position"][()].astype(float), "kind": f["kind"][()], "id": f["id"][()],
-                "peak": f["peak_temperature"][()].astype(float)}
+def positions(s):
+    """The snapshot's positions in its dimension (2D files carry z = 0)."""
+    return s["position"][:, :s["dim"]].astype(float)
 
 
 def extent(position, axis, surface, dx):
@@ -77,36 +77,39 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("outdir", help="output folder of amsph run (snap_*.h5)")
     ap.add_argument("--solidus", type=float, default=1673.0, help="solidus temperature, K (304 steel: 1673)")
-    ap.add_argument("--axis", default="0,0", help="beam axis: its horizontal coordinates, m (default 0,0)")
+    ap.add_argument("--axis", help="beam axis: its horizontal coordinates, m (x,y in 3D, x in 2D; default 0)")
     ap.add_argument("--csv", help="also write the table to this CSV file")
     args = ap.parse_args()
 
     snapshots = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
     if not snapshots:
         raise SystemExit(f"{args.outdir} holds no snap_*.h5: give the output folder of 'amsph run'")
-    first = read(snapshots[0])
+    first = snapshot(snapshots[0])
     up = first["dim"] - 1
-    axis = np.array([float(v) for v in args.axis.split(",")] + [0.0])
-    if len(axis) != first["dim"]:
+    across = [float(v) for v in args.axis.split(",")] if args.axis else [0.0] * up
+    if len(across) != up:
         raise SystemExit(f"--axis takes {up} coordinate(s) for a {first['dim']}D run, got '{args.axis}'")
+    axis = np.array(across + [0.0])
     material = first["kind"] != WALL
-    surface = first["position"][material, up].max() + 0.5 * first["dx"]
-    start = dict(zip(first["id"].tolist(), first["position"]))
+    surface = positions(first)[material, up].max() + 0.5 * first["dx"]
+    start = np.full((int(first["id"].max()) + 1, first["dim"]), np.nan)
+    start[first["id"]] = positions(first)
 
     rows = ["time_s,fused_particles,radius_final_m,depth_final_m,radius_initial_m,depth_initial_m,"
             "radius_isotherm_m,depth_isotherm_m"]
     print(f"{'t (ms)':>8} {'fused':>6} {'radius: final':>14} {'initial':>8} {'isotherm':>9} "
           f"{'depth: final':>13} {'initial':>8} {'isotherm':>9}  (mm)")
     for path in snapshots:
-        s = read(path)
-        fused = (s["kind"] != WALL) & (s["peak"] >= args.solidus)
+        s = snapshot(path)
+        material = s["kind"] != WALL
+        peak = s["peak_temperature"].astype(float)
+        fused = material & (peak >= args.solidus)
         if not fused.any():
             continue
-        final = extent(s["position"][fused], axis, surface, s["dx"])
-        origin = np.array([start[i] for i in s["id"].tolist()])
+        final = extent(positions(s)[fused], axis, surface, s["dx"])
+        origin = start[s["id"]]
         initial = extent(origin[fused], axis, surface, s["dx"])
-        material = s["kind"] != WALL
-        iso = isotherm(origin[material], s["peak"][material], args.solidus, axis, surface, s["dx"])
+        iso = isotherm(origin[material], peak[material], args.solidus, axis, surface, s["dx"])
         rows.append(f"{s['time']:.6g},{fused.sum()}," + ",".join(f"{v:.6g}" for v in (*final, *initial, *iso)))
         print(f"{s['time'] * 1e3:8.3f} {fused.sum():6d} {final[0] * 1e3:14.3f} {initial[0] * 1e3:8.3f} "
               f"{iso[0] * 1e3:9.3f} {final[1] * 1e3:13.3f} {initial[1] * 1e3:8.3f} {iso[1] * 1e3:9.3f}")
