@@ -167,6 +167,21 @@ static inline real radiation_loss(real temp, real emissivity, real delta, const 
     return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * delta;
 }
 
+/* The surface delta of a particle with no material neighbour in its support
+ * (lone spray): its colour gradient sums nothing, yet all of it is free
+ * surface. It radiates and evaporates as a ball of its own volume V (a
+ * disc per unit depth in 2D): surface over volume
+ *   delta = d / r,   r = sqrt(V / pi) in 2D,   r = cbrt(3 V / (4 pi)) in 3D. */
+static inline real droplet_delta(real volume)
+{
+#if AMSPH_DIM == 2
+    const real radius = sqrt(volume / PI_REAL);
+#else
+    const real radius = cbrt(REAL(3.0) * volume / (REAL(4.0) * PI_REAL));
+#endif
+    return (real)AMSPH_DIM / radius;
+}
+
 /* The integral across a flat face of a square (cubic) lattice of spacing dx
  * of |grad Gamma| = |sum_b V_b grad_a W_ab| over the particles whose
  * |grad Gamma| h reaches `cutoff`: sum over the rows j under the face of
@@ -212,6 +227,8 @@ KERNEL void flat_face_delta(real h, real dx, real cutoff, GLOBAL real *integral)
  *                                                Eq. 18, kernels/vapour.h)
  *   power_wall      -m_w dh_w/dt of a wall       given by the wall (Dirichlet)
  *   power_viscous   m_a Phi / rho_a              heating of the fluid
+ * The losses take the surface delta of the colour gradient (surface_delta),
+ * of a ball for a particle with no material neighbour (droplet_delta).
  * Conduction uses the walls' mirrored temperature (wall_temperature) on
  * both sides of a pair. laser_power is the absorbed laser power per volume
  * (laser module; zeros without a laser). wall_velocity is the no-slip ghost velocity of walls
@@ -238,6 +255,7 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const real rho_a = density[a], t_a = ghost_temperature[a], k_a = conductivity[a];
         real conduction = REAL(0.0);
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        int material_neighbours = 0;
         real grad_u[3][3] = {{REAL(0.0)}}, moment[3][3] = {{REAL(0.0)}};
         real x_a[3];
         grid_point(position, a, x_a);
@@ -251,9 +269,11 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
                 const real v_b = mass[b] / density[b];
                 conduction += conduction_pair(k_a, conductivity[b], t_a, ghost_temperature[b], v_b, f * r2, r2, &p);
-                if (!material_is_gas(materials, material[b])) /* the colour of kernels/colour.h */
+                if (!material_is_gas(materials, material[b])) { /* the colour of kernels/colour.h */
+                    ++material_neighbours;
                     for (int d = 0; d < 3; ++d)
                         grad_gamma[d] += v_b * f * r_ab[d];
+                }
                 if (heats) {
                     const int fluid_b = kind[b] == KIND_FLUID;
                     for (int i = 0; i < 3; ++i) {
@@ -273,7 +293,8 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const real m_a = mass[a], temp_a = temperature[a];
         const int mat = material[a];
         const real delta = wall_a || material_is_gas(materials, mat) ? REAL(0.0)
-                                                                     : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
+                           : material_neighbours == 0 ? droplet_delta(m_a / rho_a)
+                                                      : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
         const real emissivity = thermal_material(table, mat)[THERMAL_EMISSIVITY];
         const real radiation = p.radiation ? radiation_loss(temp_a, emissivity, delta, &p) / rho_a : REAL(0.0);
         const real evaporation =
