@@ -20,7 +20,9 @@ Prints the solidus isotherm of the peak temperature: its radius on the top
 cells and at the depth of the top particle layer of an amsph run at dx =
 50 um (25 um), and its depth on the axis, each linear between cell centres.
 The error is first order in the cell (5 / 10 / 20 um give depths 0.169 /
-0.164 / 0.158 mm).
+0.164 / 0.158 mm). Below melting the problem is linear, and the centre's
+temperature matches the closed form for a Gaussian flux on a half-space to
+7e-4 (tests/test_spot_weld_conduction.py).
 """
 import argparse
 
