@@ -15,7 +15,6 @@
 #include "sim.h"
 #include "testing.h"
 
-#define PI 3.14159265358979323846
 
 /* The case's simulation on the OpenMP backend (a failure fails the test). */
 static amsph_backend *start_sim(const amsph_case *c, amsph_sim *s)

@@ -264,7 +264,7 @@ static void test_laser_through_gas(void)
 {
     static const char *gas_block =
         "  - {shape: box, kind: fluid, material: gas, min: [0, 5.0e-4], max: [1.0e-3, 7.0e-4]}\n";
-    const double expected = 0.6 * 100.0 * sqrt(2.0 / 3.14159265358979323846) / 1.0e-4 * (1.0 - exp(-2000.0 * 5.0e-4));
+    const double expected = 0.6 * 100.0 * sqrt(2.0 / PI) / 1.0e-4 * (1.0 - exp(-2000.0 * 5.0e-4));
     for (int with_gas = 0; with_gas < 2; ++with_gas) {
         char text[2048];
         snprintf(text, sizeof text, laser_case, with_gas ? gas_block : "");

@@ -37,7 +37,6 @@
 #include "testing_run.h"
 #include "voronoi.h"
 
-#define PI 3.14159265358979323846
 #define VORONOI_REACH 3.0 /* spacings: closes every cell of a fluid lattice */
 
 static int is_fluid(const amsph_host_particles *h, int i)

@@ -13,7 +13,6 @@
 #include "sim.h"
 #include "testing.h"
 
-#define PI 3.14159265358979323846
 
 static int parse(const char *text, amsph_case *c)
 {

@@ -253,8 +253,7 @@ static void test_series_ledger(void)
     CHECK_OK(amsph_sim_run(&s, &run));
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
-    const double pi = 3.14159265358979323846;
-    const double absorbed = 100.0 * sqrt(2.0 / pi) / 1e-4 * (1.0 - exp(-2000.0 * 5e-4)); /* W/m */
+    const double absorbed = 100.0 * sqrt(2.0 / PI) / 1e-4 * (1.0 - exp(-2000.0 * 5e-4)); /* W/m */
     snprintf(path, sizeof path, "%s/series.csv", dir);
     FILE *f = fopen(path, "r");
     CHECK(f && fgets(line, sizeof line, f), "no series.csv in %s", dir);

@@ -24,7 +24,6 @@
 #include "scene.h"
 #include "testing.h"
 
-#define PI 3.14159265358979323846
 #define TOL 1e-6 /* relative slack of a contact */
 
 /* A bed of 40 x 40 radii (2D; 3D: 16 x 16 x 16) of grains of radius about 1. */

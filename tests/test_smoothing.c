@@ -13,7 +13,7 @@ static double integral_of_w(double h)
     double sum = 0.0;
     for (int k = 0; k < steps; ++k) {
         const double r = (k + 0.5) * dr;
-        const double shell = AMSPH_DIM == 2 ? 2.0 * 3.14159265358979323846 * r : 4.0 * 3.14159265358979323846 * r * r;
+        const double shell = AMSPH_DIM == 2 ? 2.0 * PI * r : 4.0 * PI * r * r;
         sum += smoothing_w((real)r, (real)h) * shell * dr;
     }
     return sum;

@@ -154,7 +154,7 @@ static void test_capillary_step(void)
     CHECK_OK(amsph_sim_create(&c, b, &s));
     CHECK_OK(amsph_sim_stable_dt(&s, &dt));
     const double h = s.h;
-    const double expected = 0.25 * sqrt(1000.0 * h * h * h / (2.0 * 3.14159265358979 * 1e4));
+    const double expected = 0.25 * sqrt(1000.0 * h * h * h / (2.0 * PI * 1e4));
     CHECK(strcmp(s.dt_limit, "capillary") == 0, "the step is set by the %s limit", s.dt_limit);
     CHECK(fabs(dt - expected) < 1e-6 * expected, "capillary step %g s, expected %g s", dt, expected);
     amsph_sim_free(&s);
@@ -236,7 +236,7 @@ static void test_square_droplet(void)
                 centre[d] += x[3 * i + d] / h.n;
         for (int i = 0; i < h.n; ++i) {
             const double dx = x[3 * i] - centre[0], dy = x[3 * i + 1] - centre[1];
-            int sector = (int)floor((atan2(dy, dx) + 3.14159265358979) / (2 * 3.14159265358979) * SECTORS);
+            int sector = (int)floor((atan2(dy, dx) + PI) / (2 * PI) * SECTORS);
             sector = sector < 0 ? 0 : sector >= SECTORS ? SECTORS - 1 : sector;
             outer[sector] = fmax(outer[sector], hypot(dx, dy) + 0.5 * c.dx);
             speed = fmax(speed, hypot(v[3 * i], v[3 * i + 1]));
@@ -247,7 +247,7 @@ static void test_square_droplet(void)
         for (int k = 0; k < SECTORS; ++k)
             spread += (outer[k] - mean) * (outer[k] - mean) / SECTORS;
         spread = sqrt(spread);
-        const double radius = 1.0 / sqrt(3.14159265358979);
+        const double radius = 1.0 / sqrt(PI);
         printf("square droplet: outer radius %.4f m (circle %.4f), spread %.4f m, speed %.2e m/s\n",
                mean, radius, spread, speed);
         CHECK(fabs(mean - radius) < 0.01 * radius, "outer radius %g m, circle %g m", mean, radius);
@@ -374,7 +374,7 @@ static void test_contact_line_normal(double theta0)
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION);
         const amsph_real *n = amsph_host_real(&h, AMSPH_FIELD_UNIT_NORMAL);
         const int *kind = (const int *)h.data[AMSPH_FIELD_KIND];
-        const double angle = theta0 * 3.14159265358979 / 180.0;
+        const double angle = theta0 * PI / 180.0;
         int corners = 0;
         for (int i = 0; i < h.n; ++i) {
             if (kind[i] != AMSPH_KIND_FLUID || x[3 * i + 1] > c.dx || fabs(x[3 * i]) < 0.75 - c.dx)
@@ -467,7 +467,7 @@ static double sessile_angle(const amsph_host_particles *h, double dx)
         }
     const double d = m[0][3] / m[0][0], e = m[1][3] / m[1][1], f = m[2][3] / m[2][2];
     const double xc = -0.5 * d, yc = -0.5 * e, radius = sqrt(xc * xc + yc * yc - f) + 0.5 * dx;
-    return acos(fmax(-1.0, fmin(1.0, -yc / radius))) * 180.0 / 3.14159265358979;
+    return acos(fmax(-1.0, fmin(1.0, -yc / radius))) * 180.0 / PI;
 }
 
 /* theta0 = 90 degrees holds the square patch at its 90-degree contact

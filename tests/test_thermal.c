@@ -12,7 +12,6 @@
 #include "testing.h"
 #include "thermal.h"
 
-#define PI 3.14159265358979323846
 
 static int parse(const char *text, amsph_case *c)
 {
@@ -310,7 +309,7 @@ static double radiated(const char *domain, amsph_backend *b, double *exact, doub
     amsph_case c;
     amsph_sim s;
     double energy = NAN;
-    *exact = 5.670374419e-8 * 0.5 * 1e12 * perimeter * 1e-3; /* J per m of depth */
+    *exact = STEFAN_BOLTZMANN * 0.5 * 1e12 * perimeter * 1e-3; /* J per m of depth */
     if (parse(text, &c))
         return energy;
     CHECK_OK(amsph_sim_create(&c, b, &s));

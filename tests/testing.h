@@ -15,6 +15,10 @@
 #include "case.h"
 #include "error.h"
 
+/* Constants the known answers are written with. */
+#define PI 3.14159265358979323846
+#define STEFAN_BOLTZMANN 5.670374419e-8 /* W/(m^2 K^4) */
+
 static int testing_passed, testing_failed;
 
 #define CHECK(cond, ...)                                                                           \
