@@ -30,7 +30,6 @@
 #define DENSITY 1000.0  /* kg/m^3 */
 #define DX 0.02         /* m */
 #define SIDE 0.4        /* m: the block's width along every periodic axis */
-#define PI 3.14159265358979323846
 
 #define MATERIAL                                                                                   \
     "{name: m, density: 1000, sound_speed: 10, specific_heat: 1000, conductivity: 1e-9,\n"        \
@@ -255,7 +254,7 @@ static void check_lone_droplet(int dim, int k)
     const double area = dim == 2 ? 2.0 * sqrt(PI) * DX : 4.0 * PI * pow(3.0 / (4.0 * PI), 2.0 / 3.0) * DX * DX;
     CHECK_OK(amsph_sim_create(&c, b, &s));
     CHECK_OK(amsph_sim_step(&s, dt));
-    const double evaporation = heat_flux(t) * area * dt, radiation = 5.670374419e-8 * 0.5 * pow(t, 4) * area * dt;
+    const double evaporation = heat_flux(t) * area * dt, radiation = STEFAN_BOLTZMANN * 0.5 * pow(t, 4) * area * dt;
     fprintf(stderr, "lone particle %dD at %g K (%s, %d particle): evaporation %.6g J, q_v A dt = %.6g J (%.1e off); "
             "radiation %.6g J, sigma eps T^4 A dt = %.6g J (%.1e off)\n", dim, t, k ? "opencl" : "openmp",
             s.particles.n, s.ledger.evaporation, evaporation, s.ledger.evaporation / evaporation - 1.0,
