@@ -443,7 +443,8 @@ static const key_spec specs[] = {
      .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = SURFACE(interface_viscosity),
      .doc = "Factor α0 of the interface viscosity (Fuchs et al. 2022 Eqs. 31-32): an artificial "
             "viscosity α0 h |n| on the liquid at its free surface that damps spurious interface "
-            "flows (7.2 in Fuchs's Table 1); 0: off"},
+            "flows (7.2 in Fuchs's Table 1); a pair takes the larger factor of its two, so "
+            "momentum is kept; 0: off"},
     {.section = SEC_TOP, .key = "grains", .type = VT_MAP, .sub = SEC_GRAINS,
      .rule = "needs `fluid`, a block of kind `grain`, no periodic axis",
      .doc = "Mobile powder: each block of kind `grain` (each grain of a `powder_bed` of that kind) "

@@ -520,27 +520,32 @@ static inline real interface_colour_factor(real m_a, real rho_a, real m_b, real 
  * artificial viscosity (Monaghan 1992) on the liquid at its free surface,
  * of factor alpha_a = alpha0 h |n_a| (Eq. 32, delta_a = |n_a|), so that it
  * acts where the colour gradient is and fades into the bulk:
- *   a_a += alpha_a sum_b m_b h c_ab (u_ab . r_ab) / (rho_ab (r_ab^2 + eps h^2)) grad_a W_ab
- * over the fluid b, c_ab and rho_ab the pair's mean sound speed and
+ *   a_a += alpha_ab sum_b m_b h c_ab (u_ab . r_ab) / (rho_ab (r_ab^2 + eps h^2)) grad_a W_ab
+ * over the liquid b, c_ab and rho_ab the pair's mean sound speed and
  * density, eps = INTERFACE_VISCOSITY_EPSILON; it damps the spurious flows of
  * the CSF force along the surface. Unlike Monaghan's, Eq. 31 acts on
  * receding pairs too; its sign here is the dissipative one (a closing pair
- * repels). Weighed with alpha_a, the two forces of a pair differ where |n|
- * does (a surface particle and one below it), so the liquid's momentum is
- * not kept (Fuchs: a non-conservative surface tension formulation with
- * interface viscosity): a drop wetting a free grain swung to 22 kg m/s per
- * m in 7 s with alpha0 = 7.2, and the binder of binder_jetting_10ms_2d
- * drifts 53 um left by 0.1 ms (BENCHMARKS.md, surface momentum). The pair's
- * mean or geometric mean of alpha would keep it, but damped the sessile
- * cap too little (test_surface: at 60 degrees a particle still at 7.6e-3
- * and 8.4e-3 m/s after 20 s, at 120 degrees 114.0 and 114.4 degrees). Returned as the factor of
- * m_b r_ab, f the kernel's grad_a W_ab = f r_ab. */
+ * repels). Fuchs weighs each particle's sum with its own alpha_a, so that
+ * the two forces of a pair differ where |n| does (a surface particle and
+ * one below it) and the liquid's momentum is not kept ("a non-conservative
+ * surface tension formulation with interface viscosity"): a drop wetting a
+ * free grain swung to 22 kg m/s per m in 7 s. Here the pair takes the
+ * larger of its two factors, alpha_ab = max(alpha_a, alpha_b): the pair's
+ * forces are equal and opposite and along r_ab, so linear and angular
+ * momentum are kept, and no surface particle is damped less than by Eq. 31
+ * (the pair's mean would keep momentum too, but damps less). The force
+ * reaches two supports into the liquid, and without Fuchs's drag of the
+ * surface against the interior a sessile cap takes longer to rest (at 60
+ * degrees it overshoots to 54 and is at rest by 40 s, not 20; BENCHMARKS.md).
+ * Gas neighbours (100 times lighter) take no part, so that the sum runs over
+ * the liquid's own pairs only. Returned as the factor of m_b r_ab, f the
+ * kernel's grad_a W_ab = f r_ab. */
 #define INTERFACE_VISCOSITY_EPSILON REAL(0.01)
 
-static inline real interface_viscosity_factor(real alpha_a, real h, real c_mean, real rho_mean, real u_dot_r,
+static inline real interface_viscosity_factor(real alpha_ab, real h, real c_mean, real rho_mean, real u_dot_r,
                                               real r2, real f)
 {
-    return alpha_a * h * c_mean * u_dot_r / (rho_mean * (r2 + INTERFACE_VISCOSITY_EPSILON * h * h)) * f;
+    return alpha_ab * h * c_mean * u_dot_r / (rho_mean * (r2 + INTERFACE_VISCOSITY_EPSILON * h * h)) * f;
 }
 
 /* alpha_a of the interface viscosity (Fuchs et al. 2022 Eq. 32) on a liquid
@@ -552,6 +557,17 @@ static inline real interface_viscosity_alpha(GLOBAL const int *kind, GLOBAL cons
     return p->interface_viscosity > REAL(0.0) && kind[a] == KIND_FLUID && colour_material(materials, material, a)
                ? p->interface_viscosity * p->h * normal_size(normal, a)
                : REAL(0.0);
+}
+
+/* alpha_ab of the interface viscosity on the pair of liquid a (its alpha_a)
+ * and b: the larger of the two factors on a liquid pair, 0 otherwise. */
+static inline real interface_viscosity_pair_alpha(GLOBAL const int *kind, GLOBAL const int *material,
+                                                  GLOBAL const real *materials, GLOBAL const real *normal,
+                                                  const surface_params *p, real alpha_a, int a, int b)
+{
+    if (p->interface_viscosity <= REAL(0.0) || b == a || !is_liquid(kind, material, materials, b))
+        return REAL(0.0);
+    return fmax(alpha_a, interface_viscosity_alpha(kind, material, materials, normal, p, b));
 }
 
 /* On fluid particles, with the curvature smoothed over the particles with a
@@ -603,13 +619,15 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
                 if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                     continue;
                 const real r = sqrt(r2);
-                if (alpha_a > REAL(0.0) && kind[b] == KIND_FLUID && b != a) {
+                const real alpha_ab =
+                    interface_viscosity_pair_alpha(kind, material, materials, normal, &p, alpha_a, a, b);
+                if (alpha_ab > REAL(0.0)) {
                     real u_ab[3];
                     for (int d = 0; d < 3; ++d)
                         u_ab[d] = velocity[3 * a + d] - velocity[3 * b + d];
                     const real c_mean = REAL(0.5) * (material_value(materials, material[a], MATERIAL_SOUND_SPEED) +
                                                      material_value(materials, material[b], MATERIAL_SOUND_SPEED));
-                    const real v = mass[b] * interface_viscosity_factor(alpha_a, p.h, c_mean,
+                    const real v = mass[b] * interface_viscosity_factor(alpha_ab, p.h, c_mean,
                                                                         REAL(0.5) * (density[a] + density[b]),
                                                                         dot3(u_ab, r_ab), r2,
                                                                         smoothing_grad_factor(r, p.h));
@@ -659,10 +677,10 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
             }
             for (int d = 0; d < 3; ++d)
                 acceleration[3 * a + d] += force[d] / density[a];
-            if (alpha_a > REAL(0.0))
-                for (int d = 0; d < 3; ++d)
-                    acceleration[3 * a + d] += damping[d];
         }
+        if (p.interface_viscosity > REAL(0.0))
+            for (int d = 0; d < 3; ++d)
+                acceleration[3 * a + d] += damping[d];
     }
 }
 

@@ -636,14 +636,15 @@ static void test_float(void)
 /* A free grain (disc of radius 0.4 m, density 2000) and a drop of a liquid
  * that wets it at 60 degrees (disc of radius 0.5 m centred 0.6 m away, the
  * overlap left to the grain), at rest, no gravity, no walls; surface
- * tension 10 N/m, no interface viscosity (Fuchs's Eq. 31 does not keep the
- * momentum: kernels/surface.cl). */
+ * tension 10 N/m and the interface viscosity of Fuchs's Eqs. 31-32 at their
+ * alpha0 = 7.2 (its pairs take the larger alpha of the two, which keeps
+ * the momentum: kernels/surface.cl). */
 static const char wet_text[] =
     "dimension: 2\n"
     "domain: {min: [-1.5, -1.5], max: [2.5, 1.5]}\n"
     "dx: 0.05\nkernel: quintic\nh_over_dx: 1.2\nend_time: 1.0\noutput_interval: 1.0\n"
     "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"
-    "surface: {h_over_dx: 1.5}\n"
+    "surface: {h_over_dx: 1.5, interface_viscosity: 7.2}\n"
     "grains: {contact_stiffness: 1e4}\n"
     "materials:\n"
     "  - {name: liquid, density: 1000, sound_speed: 2, surface_tension: 10, contact_angle: 60}\n"
