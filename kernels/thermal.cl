@@ -167,11 +167,17 @@ static inline real radiation_loss(real temp, real emissivity, real delta, const 
     return STEFAN_BOLTZMANN * emissivity * (t2 * t2 - ambient2 * ambient2) * delta;
 }
 
-/* The surface delta of a particle with no material neighbour in its support
- * (lone spray): its colour gradient sums nothing, yet all of it is free
+/* The surface delta of a detached particle, one with no material neighbour
+ * nearer than DETACHED_SPACINGS times its own spacing V^(1/d) (spray): its
+ * colour gradient sums little or nothing (exactly nothing alone, below the
+ * cut-off with one neighbour two spacings off), yet all of it is free
  * surface. It radiates and evaporates as a ball of its own volume V (a
  * disc per unit depth in 2D): surface over volume
- *   delta = d / r,   r = sqrt(V / pi) in 2D,   r = cbrt(3 V / (4 pi)) in 3D. */
+ *   delta = d / r,   r = sqrt(V / pi) in 2D,   r = cbrt(3 V / (4 pi)) in 3D.
+ * Lattice neighbours (1 spacing, sqrt(2) diagonally) are nearer, so faces
+ * and corners keep the colour gradient's delta. */
+#define DETACHED_SPACINGS REAL(1.5)
+
 static inline real droplet_delta(real volume)
 {
 #if AMSPH_DIM == 2
@@ -180,6 +186,18 @@ static inline real droplet_delta(real volume)
     const real radius = cbrt(REAL(3.0) * volume / (REAL(4.0) * PI_REAL));
 #endif
     return (real)AMSPH_DIM / radius;
+}
+
+/* (DETACHED_SPACINGS V^(1/d))^2: nearer material neighbours attach. */
+static inline real attached_distance2(real volume)
+{
+#if AMSPH_DIM == 2
+    const real spacing2 = volume;
+#else
+    const real spacing = cbrt(volume);
+    const real spacing2 = spacing * spacing;
+#endif
+    return DETACHED_SPACINGS * DETACHED_SPACINGS * spacing2;
 }
 
 /* The integral across a flat face of a square (cubic) lattice of spacing dx
@@ -228,7 +246,7 @@ KERNEL void flat_face_delta(real h, real dx, real cutoff, GLOBAL real *integral)
  *   power_wall      -m_w dh_w/dt of a wall       given by the wall (Dirichlet)
  *   power_viscous   m_a Phi / rho_a              heating of the fluid
  * The losses take the surface delta of the colour gradient (surface_delta),
- * of a ball for a particle with no material neighbour (droplet_delta).
+ * of a ball for a detached particle (droplet_delta).
  * Conduction uses the walls' mirrored temperature (wall_temperature) on
  * both sides of a pair. laser_power is the absorbed laser power per volume
  * (laser module; zeros without a laser). wall_velocity is the no-slip ghost velocity of walls
@@ -255,7 +273,8 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const real rho_a = density[a], t_a = ghost_temperature[a], k_a = conductivity[a];
         real conduction = REAL(0.0);
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-        int material_neighbours = 0;
+        const real attached2 = attached_distance2(mass[a] / rho_a);
+        int attached = 0; /* material neighbours nearer than attached_distance2 */
         real grad_u[3][3] = {{REAL(0.0)}}, moment[3][3] = {{REAL(0.0)}};
         real x_a[3];
         grid_point(position, a, x_a);
@@ -270,7 +289,7 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
                 const real v_b = mass[b] / density[b];
                 conduction += conduction_pair(k_a, conductivity[b], t_a, ghost_temperature[b], v_b, f * r2, r2, &p);
                 if (!material_is_gas(materials, material[b])) { /* the colour of kernels/colour.h */
-                    ++material_neighbours;
+                    attached += r2 < attached2;
                     for (int d = 0; d < 3; ++d)
                         grad_gamma[d] += v_b * f * r_ab[d];
                 }
@@ -293,7 +312,7 @@ KERNEL void heat_rate(GLOBAL const real *position, GLOBAL const real *velocity,
         const real m_a = mass[a], temp_a = temperature[a];
         const int mat = material[a];
         const real delta = wall_a || material_is_gas(materials, mat) ? REAL(0.0)
-                           : material_neighbours == 0 ? droplet_delta(m_a / rho_a)
+                           : attached == 0 ? droplet_delta(m_a / rho_a)
                                                       : surface_delta(sqrt(thermal_dot3(grad_gamma, grad_gamma)), &p);
         const real emissivity = thermal_material(table, mat)[THERMAL_EMISSIVITY];
         const real radiation = p.radiation ? radiation_loss(temp_a, emissivity, delta, &p) / rho_a : REAL(0.0);

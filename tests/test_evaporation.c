@@ -4,8 +4,9 @@
  * material, and nothing inside it; the evaporative heat loss (Eq. 18) is
  * q_v(T) times the area (both to 1e-5, float rounding; measured 4e-7);
  * both at two temperatures (an error in the exponent changes their ratio),
- * on both backends, which agree particle by particle. A lone particle
- * radiates and evaporates as a ball of its volume. A laser-heated slab
+ * on both backends, which agree particle by particle. A detached particle
+ * (alone, or two spacings from its neighbour) radiates and evaporates as a
+ * ball of its volume. A laser-heated slab
  * that boils keeps its energy ledger closed
  * with the evaporation term; particles above a cut-off temperature leave,
  * are counted and take their enthalpy into the ledger. */
@@ -222,26 +223,35 @@ static void test_cooling(void)
     }
 }
 
-/* A lone particle (one spacing cube, no neighbour within its support)
- * radiates and evaporates as a ball of its volume dx^d: a disc of
- * perimeter 2 sqrt(pi) dx per unit depth in 2D, a sphere of area
- * 4 pi (3 / (4 pi))^(2/3) dx^2 in 3D. One explicit step of dt at 3500 K,
- * emissivity 0.5 into 0 K: the heat booked is q_v A dt and
- * sigma eps T^4 A dt. The colour gradient of a lone particle is zero, so
- * without the ball it would lose nothing. */
-static void check_lone_droplet(int dim, int k)
+/* Detached particles radiate and evaporate as balls of their volume dx^d:
+ * a disc of perimeter 2 sqrt(pi) dx per unit depth in 2D, a sphere of area
+ * 4 pi (3 / (4 pi))^(2/3) dx^2 in 3D. `count` one-spacing cubes 2 dx apart
+ * along x (1: a lone particle, whose colour gradient is zero; 2: a pair
+ * within each other's support, whose colour gradient is below the surface
+ * cut-off), one explicit step of dt at 3500 K, emissivity 0.5 into 0 K: the
+ * heat booked is count q_v A dt and count sigma eps T^4 A dt. Without the
+ * balls neither would lose anything. */
+static void check_detached(int dim, int count, int k)
 {
     const char *lo = dim == 2 ? "[-0.1, -0.1]" : "[-0.1, -0.1, -0.1]";
-    const char *hi = dim == 2 ? "[0.12, 0.12]" : "[0.12, 0.12, 0.12]";
-    const char *cube_lo = dim == 2 ? "[0, 0]" : "[0, 0, 0]", *cube_hi = dim == 2 ? "[0.02, 0.02]" : "[0.02, 0.02, 0.02]";
-    char text[2048];
+    const char *hi = dim == 2 ? "[0.16, 0.12]" : "[0.16, 0.12, 0.12]";
+    char text[2048], cubes[512] = "";
+    for (int i = 0; i < count; ++i) {
+        const double x = 2.0 * DX * i;
+        const size_t used = strlen(cubes);
+        snprintf(cubes + used, sizeof cubes - used,
+                 dim == 2 ? "%s{shape: box, kind: solid, material: m, min: [%g, 0], max: [%g, 0.02], temperature: 3500}"
+                          : "%s{shape: box, kind: solid, material: m, min: [%g, 0, 0], max: [%g, 0.02, 0.02], "
+                            "temperature: 3500}",
+                 i ? ", " : "", x, x + DX);
+    }
     snprintf(text, sizeof text,
              "dimension: %d\ndomain: {min: %s, max: %s}\n"
              "dx: 0.02\nend_time: 1\noutput_interval: 1\n"
              "thermal: {evaporative_cooling: true, radiation: true, ambient_temperature: 0}\n"
              "materials: [" MATERIAL "]\n"
-             "geometry: [{shape: box, kind: solid, material: m, min: %s, max: %s, temperature: 3500}]\n",
-             dim, lo, hi, cube_lo, cube_hi);
+             "geometry: [%s]\n",
+             dim, lo, hi, cubes);
     amsph_case c;
     amsph_backend *b = testing_backend(k);
     if (!b || parse(text, &c)) {
@@ -251,27 +261,28 @@ static void check_lone_droplet(int dim, int k)
     c.materials[0].emissivity = 0.5;
     amsph_sim s;
     const double dt = 1e-3, t = 3500.0;
-    const double area = dim == 2 ? 2.0 * sqrt(PI) * DX : 4.0 * PI * pow(3.0 / (4.0 * PI), 2.0 / 3.0) * DX * DX;
+    const double area = count * (dim == 2 ? 2.0 * sqrt(PI) * DX : 4.0 * PI * pow(3.0 / (4.0 * PI), 2.0 / 3.0) * DX * DX);
     CHECK_OK(amsph_sim_create(&c, b, &s));
     CHECK_OK(amsph_sim_step(&s, dt));
     const double evaporation = heat_flux(t) * area * dt, radiation = STEFAN_BOLTZMANN * 0.5 * pow(t, 4) * area * dt;
-    fprintf(stderr, "lone particle %dD at %g K (%s, %d particle): evaporation %.6g J, q_v A dt = %.6g J (%.1e off); "
-            "radiation %.6g J, sigma eps T^4 A dt = %.6g J (%.1e off)\n", dim, t, k ? "opencl" : "openmp",
+    fprintf(stderr, "%d detached %dD at %g K (%s, %d particles): evaporation %.6g J, q_v A dt = %.6g J (%.1e off); "
+            "radiation %.6g J, sigma eps T^4 A dt = %.6g J (%.1e off)\n", count, dim, t, k ? "opencl" : "openmp",
             s.particles.n, s.ledger.evaporation, evaporation, s.ledger.evaporation / evaporation - 1.0,
             s.ledger.radiation, radiation, s.ledger.radiation / radiation - 1.0);
-    CHECK(s.particles.n == 1, "%dD: the lone-particle scene has %d particles", dim, s.particles.n);
+    CHECK(s.particles.n == count, "%dD: the detached scene has %d particles, not %d", dim, s.particles.n, count);
     CHECK(fabs(s.ledger.evaporation / evaporation - 1.0) < 1e-5 && fabs(s.ledger.radiation / radiation - 1.0) < 1e-5,
-          "%dD lone particle: evaporation %.6g J (q_v A dt = %.6g), radiation %.6g J (sigma eps T^4 A dt = %.6g)", dim,
-          s.ledger.evaporation, evaporation, s.ledger.radiation, radiation);
+          "%dD, %d detached: evaporation %.6g J (q_v A dt = %.6g), radiation %.6g J (sigma eps T^4 A dt = %.6g)", dim,
+          count, s.ledger.evaporation, evaporation, s.ledger.radiation, radiation);
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
 }
 
-static void test_lone_droplet(void)
+static void test_detached(void)
 {
     for (int k = 0; k < TESTING_BACKENDS; ++k)
         for (int dim = 2; dim <= 3; ++dim)
-            check_lone_droplet(dim, k);
+            for (int count = 1; count <= 2; ++count)
+                check_detached(dim, count, k);
 }
 
 /* A solid block of 20 x 15 particles at 1000 K under 20 x 5 at 3500 K,
@@ -447,7 +458,7 @@ int main(void)
 {
     test_recoil();
     test_cooling();
-    test_lone_droplet();
+    test_detached();
     test_removal();
     test_departure();
     test_boiling_slab();
