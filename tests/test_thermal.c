@@ -12,7 +12,6 @@
 #include "testing.h"
 #include "thermal.h"
 
-
 static int parse(const char *text, amsph_case *c)
 {
     char err[1024];
