@@ -167,9 +167,9 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
                              amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
-                             amsph_arg_buffer(s->closest)));
+                             amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
-                             field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->closest),
+                             field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->others),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), amsph_arg_real(dt),
                              field(s, AMSPH_FIELD_DENSITY)));
     return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
@@ -203,7 +203,7 @@ int amsph_fluid_forces(amsph_sim *s)
                         amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_DENSITY_RATE),
-                        amsph_arg_buffer(s->closest));
+                        amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others));
 }
 
 unsigned amsph_fluid_recomputed_fields(const amsph_sim *s)

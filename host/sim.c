@@ -209,6 +209,7 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_surface_allocate(s));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &s->others));
     if (c->fluid.shifting > 0.0)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 3 * sizeof(amsph_real), &s->shift));
     if (c->grains.enabled)
@@ -239,6 +240,7 @@ void amsph_sim_free(amsph_sim *s)
     amsph_particles_free(&s->last_good);
     amsph_buffer_free(s->backend, s->work);
     amsph_buffer_free(s->backend, s->closest);
+    amsph_buffer_free(s->backend, s->others);
     amsph_buffer_free(s->backend, s->shift);
     amsph_buffer_free(s->backend, s->contact_pull);
     for (int k = 0; k < 2; ++k)
@@ -332,6 +334,14 @@ int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_sta
     amsph_scalar_value scalar[AMSPH_SIM_SCALAR_COUNT];
     memcpy(scalar, st->scalar, sizeof scalar);
     copy_scalars(s, scalar, 1);
+    if (c->fluid.enabled && s->fluid.one_pass) {
+        /* The Verlet update reads the neighbour counts of the last pass
+         * (density_at_step_end, kernels/integrate.cl), which a checkpoint
+         * does not hold. The state was saved sorted, so the pass again gives
+         * them and the saved rates bit for bit. */
+        AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
+        AMSPH_CHECK(amsph_fluid_forces(s));
+    }
     return c->grains.enabled ? amsph_grains_restore(s, st->grains, st->grain_values) : 0;
 }
 
@@ -457,7 +467,7 @@ static int verlet_advance(amsph_sim *s, double dt)
     const int euler = s->step % s->config.fluid.verlet_steps == 0;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "verlet_update", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_ACCELERATION]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY_RATE]), amsph_arg_buffer(s->closest),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY_RATE]), amsph_arg_buffer(s->others),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_REFERENCE_DENSITY]), amsph_arg_int(p->n),
                              amsph_arg_real(dt), amsph_arg_real(dt + s->dt), amsph_arg_int(euler),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),

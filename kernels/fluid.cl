@@ -250,6 +250,7 @@ static inline int diffuses_departure(const fluid_params *p)
 typedef struct {
     real shepard, drho, diffusion, nearest;
     int fluid_near; /* a fluid particle other than a lies within the support */
+    int others;     /* fluid a: the particles other than a within its support */
     /* CONTINUITY_CORRECTED: moment[3 i + j] = B_ij and rate[3 i + j] = D_ij
      * of corrected_density_rate */
     real moment[9], rate[9];
@@ -258,7 +259,7 @@ typedef struct {
 /* Sums over no neighbour yet. */
 static inline continuity_sums continuity_sums_none(void)
 {
-    const continuity_sums none = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0, {REAL(0.0)}, {REAL(0.0)}};
+    const continuity_sums none = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0, 0, {REAL(0.0)}, {REAL(0.0)}};
     return none;
 }
 
@@ -349,6 +350,7 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
     if (!s_a->fluid || b == a)
         return;
     sums->nearest = r < sums->nearest ? r : sums->nearest; /* fmin, without a call to libm in C */
+    sums->others += 1;
     const real f = smoothing_grad_factor_at(&scale_ab, r); /* grad_a W_ab = f r_ab */
     real u_ab[3];
     for (int d = 0; d < 3; ++d)
@@ -428,7 +430,8 @@ static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL co
  *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
  * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
  * between fluid particles of the same phase only. closest[a] is the distance to the nearest
- * other particle, for the guards. The rates are computed for fluid
+ * other particle, for the guards, and others[a] the number of other particles within the
+ * support, for the density update (kernels/integrate.cl density_at_step_end). The rates are computed for fluid
  * particles. Gamma is computed for every fluid particle, and for the others
  * where a fluid particle lies within the support: only a fluid neighbour's
  * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
@@ -444,7 +447,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
                        GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                        GLOBAL const real *materials, fluid_params p, GLOBAL real *density_rate,
-                       GLOBAL real *gamma, GLOBAL real *closest)
+                       GLOBAL real *gamma, GLOBAL real *closest, GLOBAL int *others)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -462,6 +465,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
         density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
         closest[a] = sums.nearest;
+        others[a] = sums.others;
     }
 }
 
@@ -535,10 +539,10 @@ PAIR_INLINE void fluid_forces_of(int a, GLOBAL const real *position, GLOBAL cons
  * kernels/fluid_pair.h. With p.one_pass (fluid.integration: verlet) the same
  * pass over the neighbours also evaluates the continuity sums of the fluid
  * particles at this state (continuity, above; the velocity of the state,
- * not of a half step) into density_rate and closest, and writes 0 and
- * NO_NEIGHBOUR for the other particles. It takes no Shepard sum: no force
+ * not of a half step) into density_rate, closest and others, and writes 0,
+ * NO_NEIGHBOUR and 0 for the other particles. It takes no Shepard sum: no force
  * reads Gamma under the symmetric pressure form, and wall_state finds the
- * fluid near a wall itself. Without p.one_pass those two are not touched. */
+ * fluid near a wall itself. Without p.one_pass those three are not touched. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,
                          GLOBAL const real *reference_density,
@@ -548,7 +552,8 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
                          GLOBAL const int *kind, GLOBAL const int *material,
                          GLOBAL const int *cell, int n, grid_geometry g,
                          GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *closest)
+                         GLOBAL real *acceleration, GLOBAL real *density_rate, GLOBAL real *closest,
+                         GLOBAL int *others)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -570,6 +575,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
         if (p.one_pass) {
             density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
             closest[a] = sums.nearest;
+            others[a] = sums.others;
         }
     }
 }

@@ -57,27 +57,32 @@ KERNEL void damp_velocity(GLOBAL const int *kind, int n, real factor, GLOBAL rea
 }
 
 /* The density a fluid particle takes at the step's end: `advanced`, the
- * scheme's update, or rho0(T) for a lone particle, with no other particle
- * within its support (closest = NO_NEIGHBOUR): continuity has nothing to
- * expand or compress it against, and a drop that small stands at the
- * ambient pressure, p = p_b. Without this a spray particle heated in a beam
- * keeps the density it left the melt with while rho0(T) falls (in the 200 W
- * track, 35% apart: the density guard), and meets the melt again in
- * tension. */
-static inline real density_at_step_end(real closest, real reference_density, real advanced)
+ * scheme's update, or rho0(T) for a particle with fewer than d other
+ * particles within its support (`others`, counted by continuity): spray,
+ * alone or in a pair (in 3D also three). Continuity measures the volume
+ * change of a particle by the flow of its neighbours, and fewer than d of
+ * them span fewer than d directions: the moment matrix
+ * B = -sum_b V_b r_ab (grad_a W_ab)^T has rank below d, and the divergence
+ * across the missing directions goes unseen. A drop that small stands at
+ * the ambient pressure, p = p_b. Without this a spray particle heated in a
+ * beam keeps the density it left the melt with while rho0(T) falls (in the
+ * 200 W track, 35% apart: the density guard) and meets the melt again in
+ * tension, and a pair torn off below rho0 is pulled onto itself by its
+ * tension (the PBF point case: 2% below rho0, -55 MPa, 0.3 dx apart). */
+static inline real density_at_step_end(int others, real reference_density, real advanced)
 {
-    return closest == NO_NEIGHBOUR ? reference_density : advanced;
+    return others < AMSPH_DIM ? reference_density : advanced;
 }
 
 /* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl),
  * density_at_step_end. */
-KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, GLOBAL const real *closest,
+KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, GLOBAL const int *others,
                             GLOBAL const real *reference_density, int n, real dt, GLOBAL real *density)
 {
     FOR_EACH_ITEM(i, n)
     {
         if (kind[i] == KIND_FLUID)
-            density[i] = density_at_step_end(closest[i], reference_density[i], density[i] + dt * density_rate[i]);
+            density[i] = density_at_step_end(others[i], reference_density[i], density[i] + dt * density_rate[i]);
     }
 }
 
@@ -94,7 +99,7 @@ KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_r
  * Walls and fixed solids move with their velocity; grains are not in such
  * a case (case.c). */
 KERNEL void verlet_update(GLOBAL const int *kind, GLOBAL const real *acceleration, GLOBAL const real *density_rate,
-                          GLOBAL const real *closest, GLOBAL const real *reference_density, int n, real dt,
+                          GLOBAL const int *others, GLOBAL const real *reference_density, int n, real dt,
                           real span, int euler, GLOBAL real *position, GLOBAL real *velocity,
                           GLOBAL real *velocity_previous, GLOBAL real *density, GLOBAL real *density_previous)
 {
@@ -108,7 +113,7 @@ KERNEL void verlet_update(GLOBAL const int *kind, GLOBAL const real *acceleratio
                 velocity_previous[3 * i + d] = u;
             }
             const real rho = density[i];
-            density[i] = density_at_step_end(closest[i], reference_density[i],
+            density[i] = density_at_step_end(others[i], reference_density[i],
                                              euler ? rho + dt * density_rate[i]
                                                    : density_previous[i] + span * density_rate[i]);
             density_previous[i] = rho;

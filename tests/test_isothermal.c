@@ -397,43 +397,88 @@ static void test_thermal_drives_rho0(void)
     amsph_backend_destroy(b);
 }
 
-/* Two lone fluid particles (nothing within each other's support), heated
- * by the prescribed history by 50 K over a quarter period: each takes
- * rho0(T) (kernels/integrate.cl advance_density), 950 kg/m^3 at the peak,
- * where continuity alone would leave them at the 1000 they started with. */
-static const char *lone_case =
+/* Spray: fluid particles with fewer than d others within their support
+ * (kernels/integrate.cl density_at_step_end), cooled by the prescribed
+ * history by 50 K over a quarter period while rho0(T) rises from 1000 to
+ * 1050 kg/m^3. Each takes rho0(T), so it stands at p = p_b = 0, and a pair
+ * (in 3D also a row of three), 1 dx apart in a support of 2.4 dx, keeps
+ * its spacing. With continuity alone a particle keeps the 1000 it started
+ * with, and a pair's 2e4 Pa of tension pulls it onto itself, as the spray
+ * pairs torn off the PBF melt were. */
+static const char *spray_case_2d =
     "dimension: 2\n"
     "domain: {min: [-1, -1], max: [1, 1]}\n"
     "dx: 0.1\n"
     "end_time: 0.25\n"
     "output_interval: 0.25\n"
-    "temperature_history: {reference: 300, amplitude: 50, frequency: 1}\n"
+    "temperature_history: {reference: 300, amplitude: -50, frequency: 1}\n"
     "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"
     "materials:\n"
     "  - {name: liquid, density: [[250, 1050], [350, 950]], sound_speed: 20}\n"
     "geometry:\n"
     "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0], max: [-0.5, 0.1]}\n"
-    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0], max: [0.6, 0.1]}\n";
+    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0], max: [0.7, 0.1]}\n";
 
-static void test_lone_particles(void)
+static const char *spray_case_3d =
+    "dimension: 3\n"
+    "domain: {min: [-1, -1, -1], max: [1, 1, 1]}\n"
+    "dx: 0.1\n"
+    "end_time: 0.25\n"
+    "output_interval: 0.25\n"
+    "temperature_history: {reference: 300, amplitude: -50, frequency: 1}\n"
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"
+    "materials:\n"
+    "  - {name: liquid, density: [[250, 1050], [350, 950]], sound_speed: 20}\n"
+    "geometry:\n"
+    "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0, 0], max: [-0.5, 0.1, 0.1]}\n"
+    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0, 0], max: [0.7, 0.1, 0.1]}\n"
+    "  - {shape: box, kind: fluid, material: liquid, min: [0, 0.5, 0], max: [0.1, 0.8, 0.1]}\n";
+
+/* Does particle i of h have another particle dx away, to 1e-3 dx? */
+static int has_partner(const amsph_host_particles *h, int i, double dx)
+{
+    const amsph_real *x = amsph_host_real(h, AMSPH_FIELD_POSITION);
+    for (int j = 0; j < h->n; ++j) {
+        double r2 = 0.0;
+        for (int d = 0; d < 3; ++d)
+            r2 += (x[3 * i + d] - x[3 * j + d]) * (x[3 * i + d] - x[3 * j + d]);
+        if (j != i && fabs(sqrt(r2) - dx) < 1e-3 * dx)
+            return 1;
+    }
+    return 0;
+}
+
+static void check_spray(const char *text, int particles)
 {
     amsph_case c;
     char err[512];
-    CHECK(amsph_case_parse(lone_case, strlen(lone_case), "lone.yaml", &c, err, sizeof err) == 0, "%s", err);
+    CHECK(amsph_case_parse(text, strlen(text), "spray.yaml", &c, err, sizeof err) == 0, "%s", err);
     for (int k = 0; k < TESTING_BACKENDS; ++k) {
         amsph_host_particles h;
         if (testing_run_case(&c, k, c.end_time, &h))
             continue;
-        CHECK(h.n == 2, "%d particles, not the two lone ones", h.n);
+        CHECK(h.n == particles, "%dD: %d particles, not %d", c.dim, h.n, particles);
         for (int i = 0; i < h.n; ++i) {
             const double t = amsph_host_real(&h, AMSPH_FIELD_TEMPERATURE)[i];
             const double rho0 = amsph_material_density(&c.materials[0], t);
             const double rho = amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i];
-            CHECK(t > 349.0, "particle %d at %g K: the history did not heat it", i, t);
-            CHECK(fabs(rho - rho0) < 1e-5 * rho0, "lone particle %d: rho %g against rho0(T) %g", i, rho, rho0);
+            CHECK(t < 251.0, "%dD particle %d at %g K: the history did not cool it", c.dim, i, t);
+            CHECK(fabs(rho - rho0) < 1e-5 * rho0, "%dD particle %d: rho %g against rho0(T) %g", c.dim, i, rho, rho0);
         }
+        /* every particle but the lone one still has a partner 1 dx away: no tension drew them in */
+        int paired = 0;
+        for (int i = 0; i < h.n; ++i)
+            paired += has_partner(&h, i, c.dx);
+        CHECK(paired == particles - 1, "%dD: %d particles keep a partner 1 dx away, not %d", c.dim, paired,
+              particles - 1);
         amsph_host_free(&h);
     }
+}
+
+static void test_spray(void)
+{
+    check_spray(spray_case_2d, 3);
+    check_spray(spray_case_3d, 6);
 }
 
 /* ---- the cases ---------------------------------------------------------- */
@@ -850,14 +895,14 @@ int main(int argc, char **argv)
     } parts[] = {{"law", test_steel_density}, {"law", test_thermal_drives_rho0}, {"cycle", test_cycle},
                  {"cycle_3d", test_cycle_3d},   {"column", test_column},                {"sinking", test_sinking},
                  {"smoothing", test_volume_smoothing}, {"smoothing", test_volume_smoothing_momentum},
-                 {"lone", test_lone_particles}};
+                 {"spray", test_spray}};
     int ran = 0;
     for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k)
         if (argc < 2 || strcmp(argv[1], parts[k].name) == 0) {
             parts[k].run();
             ++ran;
         }
-    CHECK(ran > 0, "unknown part '%s' (law, cycle, cycle_3d, column, sinking, smoothing, lone; or sweep CASE DX...)",
+    CHECK(ran > 0, "unknown part '%s' (law, cycle, cycle_3d, column, sinking, smoothing, spray; or sweep CASE DX...)",
           argv[1]);
     return testing_finish();
 }
