@@ -56,22 +56,28 @@ KERNEL void damp_velocity(GLOBAL const int *kind, int n, real factor, GLOBAL rea
     }
 }
 
-/* The density a fluid particle takes at the step's end: `advanced`, the
- * scheme's update, or rho0(T) for a particle with fewer than d other
- * particles within its support (`others`, counted by continuity): spray,
- * alone or in a pair (in 3D also three). Continuity measures the volume
- * change of a particle by the flow of its neighbours, and fewer than d of
- * them span fewer than d directions: the moment matrix
- * B = -sum_b V_b r_ab (grad_a W_ab)^T has rank below d, and the divergence
- * across the missing directions goes unseen. A drop that small stands at
- * the ambient pressure, p = p_b. Without this a spray particle heated in a
- * beam keeps the density it left the melt with while rho0(T) falls (in the
- * 200 W track, 35% apart: the density guard) and meets the melt again in
- * tension, and a pair torn off below rho0 is pulled onto itself by its
- * tension (the PBF point case: 2% below rho0, -55 MPa, 0.3 dx apart). */
+/* The density a fluid particle takes at the step's end from `advanced`,
+ * the scheme's update, where fewer than d other particles lie within its
+ * support (`others`, counted by continuity): spray.
+ *  - Alone: rho0(T). Continuity has nothing to expand or compress it
+ *    against, and a drop that small stands at the ambient pressure, p = p_b.
+ *    Without this a spray particle heated in a beam keeps the density it
+ *    left the melt with while rho0(T) falls (in the 200 W track, 35% apart:
+ *    the density guard), and meets the melt again compressed.
+ *  - With 1 to d - 1 others (a pair; in 3D also three): at least rho0(T).
+ *    Its neighbours span fewer than d directions (the moment matrix
+ *    B = -sum_b V_b r_ab (grad_a W_ab)^T has rank below d), so continuity
+ *    sees its volume change along those directions only: it measures the
+ *    pair closing, whose pressure pushes the two apart, but not the
+ *    particle's volume, and a pair torn off below rho0 would pull itself
+ *    together by its tension (the PBF point case: 2% below rho0, -55 MPa,
+ *    0.3 dx apart). Spray holds no tension.
+ * From d others on, `advanced`. */
 static inline real density_at_step_end(int others, real reference_density, real advanced)
 {
-    return others < AMSPH_DIM ? reference_density : advanced;
+    if (others >= AMSPH_DIM)
+        return advanced;
+    return others == 0 ? reference_density : fmax(advanced, reference_density);
 }
 
 /* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl),
