@@ -429,9 +429,10 @@ static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL co
  *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
  *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
  * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
- * between fluid particles of the same phase only. closest[a] is the distance to the nearest
- * other particle, for the guards, and others[a] the number of other particles within the
- * support, for the density update (kernels/integrate.cl density_at_step_end). The rates are computed for fluid
+ * between fluid particles of the same phase only. closest[a] is the distance
+ * to the nearest other particle, for the guards, and others[a] the number of
+ * other particles within the support, for the density update
+ * (kernels/integrate.cl density_at_step_end). The rates are computed for fluid
  * particles. Gamma is computed for every fluid particle, and for the others
  * where a fluid particle lies within the support: only a fluid neighbour's
  * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
@@ -540,8 +541,8 @@ PAIR_INLINE void fluid_forces_of(int a, GLOBAL const real *position, GLOBAL cons
  * pass over the neighbours also evaluates the continuity sums of the fluid
  * particles at this state (continuity, above; the velocity of the state,
  * not of a half step) into density_rate, closest and others, and writes 0,
- * NO_NEIGHBOUR and 0 for the other particles. It takes no Shepard sum: no force
- * reads Gamma under the symmetric pressure form, and wall_state finds the
+ * NO_NEIGHBOUR and 0 for the other particles. It takes no Shepard sum: no
+ * force reads Gamma under the symmetric pressure form, and wall_state finds the
  * fluid near a wall itself. Without p.one_pass those three are not touched. */
 KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                          GLOBAL const real *wall_velocity, GLOBAL const real *density,

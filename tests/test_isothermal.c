@@ -411,28 +411,28 @@ static void test_thermal_drives_rho0(void)
  *    alone at rho0(T). With rho0 taken whatever the pair does, nothing but
  *    the weak artificial viscosity resists the closing, and the two pass
  *    through each other (the 150 W track's spray pair met at 0.3 dx). */
-#define SPRAY_GEOMETRY_2D                                                                              \
-    "geometry:\n"                                                                                      \
-    "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0], max: [-0.5, 0.1]}\n"              \
-    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0], max: [0.7, 0.1]}\n"                \
+#define SPRAY_GEOMETRY_2D \
+    "geometry:\n" \
+    "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0], max: [-0.5, 0.1]}\n" \
+    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0], max: [0.7, 0.1]}\n" \
     "  - {shape: box, kind: fluid, material: liquid, min: [-0.15, -0.5], max: [-0.05, -0.4], velocity: [1, 0]}\n" \
     "  - {shape: box, kind: fluid, material: liquid, min: [0.05, -0.5], max: [0.15, -0.4], velocity: [-1, 0]}\n"
 
-#define SPRAY_GEOMETRY_3D                                                                              \
-    "geometry:\n"                                                                                      \
-    "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0, 0], max: [-0.5, 0.1, 0.1]}\n"      \
-    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0, 0], max: [0.7, 0.1, 0.1]}\n"        \
-    "  - {shape: box, kind: fluid, material: liquid, min: [0, 0.5, 0], max: [0.1, 0.8, 0.1]}\n"        \
+#define SPRAY_GEOMETRY_3D \
+    "geometry:\n" \
+    "  - {shape: box, kind: fluid, material: liquid, min: [-0.6, 0, 0], max: [-0.5, 0.1, 0.1]}\n" \
+    "  - {shape: box, kind: fluid, material: liquid, min: [0.5, 0, 0], max: [0.7, 0.1, 0.1]}\n" \
+    "  - {shape: box, kind: fluid, material: liquid, min: [0, 0.5, 0], max: [0.1, 0.8, 0.1]}\n" \
     "  - {shape: box, kind: fluid, material: liquid, min: [-0.15, -0.5, 0], max: [-0.05, -0.4, 0.1], velocity: [1, 0, 0]}\n" \
     "  - {shape: box, kind: fluid, material: liquid, min: [0.05, -0.5, 0], max: [0.15, -0.4, 0.1], velocity: [-1, 0, 0]}\n"
 
-#define SPRAY_SETTINGS                                                                                 \
-    "dx: 0.1\n"                                                                                        \
-    "end_time: 0.25\n"                                                                                 \
-    "output_interval: 0.25\n"                                                                          \
-    "temperature_history: {reference: 300, amplitude: -50, frequency: 1}\n"                            \
-    "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n"                                          \
-    "materials:\n"                                                                                     \
+#define SPRAY_SETTINGS \
+    "dx: 0.1\n" \
+    "end_time: 0.25\n" \
+    "output_interval: 0.25\n" \
+    "temperature_history: {reference: 300, amplitude: -50, frequency: 1}\n" \
+    "fluid: {viscosity: artificial, artificial_alpha: 0.1}\n" \
+    "materials:\n" \
     "  - {name: liquid, density: [[250, 1050], [350, 950]], sound_speed: 20}\n"
 
 static const char *spray_case_2d =
