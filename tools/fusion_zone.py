@@ -34,7 +34,7 @@ import os
 
 import numpy as np
 
-from track_metrics import snapshot
+from track_metrics import snapshot, write_csv
 
 WALL = 1  # particle kind of a wall (kernels/kinds.h)
 
@@ -113,9 +113,7 @@ def main():
         rows.append(f"{s['time']:.6g},{fused.sum()}," + ",".join(f"{v:.6g}" for v in (*final, *initial, *iso)))
         print(f"{s['time'] * 1e3:8.3f} {fused.sum():6d} {final[0] * 1e3:14.3f} {initial[0] * 1e3:8.3f} "
               f"{iso[0] * 1e3:9.3f} {final[1] * 1e3:13.3f} {initial[1] * 1e3:8.3f} {iso[1] * 1e3:9.3f}")
-    if args.csv:
-        with open(args.csv, "w") as f:
-            f.write("\n".join(rows) + "\n")
+    write_csv(args.csv, rows)
 
 
 if __name__ == "__main__":

@@ -28,11 +28,20 @@ def snapshot(path):
                                                      "dim": int(f.attrs["dim"]), "dx": float(f.attrs["dx"])}
 
 
-def neighbour_counts(position, reach):
-    """Other particles within `reach` of each particle (brute force, in blocks)."""
-    counts = np.empty(len(position), dtype=int)
-    for start in range(0, len(position), 1024):
-        block = position[start:start + 1024]
+def write_csv(path, rows):
+    """Write the lines `rows` (a header, then one line per row) to `path`; nothing without one."""
+    if path:
+        with open(path, "w") as f:
+            f.write("\n".join(rows) + "\n")
+
+
+def neighbour_counts(position, reach, of=None):
+    """Other particles of `position` within `reach` of each particle, or of
+    each of the points `of` (particles among `position`; brute force, in blocks)."""
+    of = position if of is None else of
+    counts = np.empty(len(of), dtype=int)
+    for start in range(0, len(of), 1024):
+        block = of[start:start + 1024]
         d2 = ((block[:, None, :] - position[None, :, :]) ** 2).sum(axis=2)
         counts[start:start + 1024] = (d2 < reach * reach).sum(axis=1) - 1
     return counts
