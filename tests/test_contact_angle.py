@@ -15,18 +15,11 @@ Skipped (exit 77) where numpy or h5py is missing.
 
 usage: test_contact_angle.py SOURCE_DIR WORK_DIR
 """
-import csv
 import os
 import shutil
-import subprocess
 import sys
 
-try:
-    import h5py
-    import numpy as np
-except ImportError as e:
-    print(f"skipped: {e}")
-    sys.exit(77)
+from tool_checks import check_readings, h5py, last_csv_row, np
 
 DX, R, FASTEST = 0.05, 1.0, 0.25
 FLUID, WALL = 0, 1  # kernels/kinds.h
@@ -61,21 +54,10 @@ def check(source, work, dim, theta):
         f.attrs["dim"], f.attrs["dx"], f.attrs["time"] = dim, DX, 1.0
         f["position"], f["kind"] = position.astype(np.float32), kind
         f["velocity"] = velocity.astype(np.float32)
-    table = os.path.join(folder, "angle.csv")
-    proc = subprocess.run([sys.executable, os.path.join(source, "tools", "contact_angle.py"), folder, "--csv", table],
-                          capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"contact_angle.py failed:\n{proc.stdout}{proc.stderr}")
-    with open(table) as f:
-        got = {k: float(v) for k, v in list(csv.DictReader(f))[-1].items()}
+    got = last_csv_row(source, "contact_angle", folder)
     expected = {"angle_deg": (theta, 2.0), "base_radius_m": (R * np.sin(np.radians(theta)), 2.0 * DX),
                 "fastest_m_s": (FASTEST, 1e-6)}
-    failed = 0
-    for name, (value, tolerance) in expected.items():
-        ok = abs(got[name] - value) <= tolerance
-        print(f"{'ok' if ok else 'FAILED'}: {dim}D theta {theta:g}: {name} {got[name]:.6g}, expected {value:.6g}")
-        failed += not ok
-    return failed
+    return check_readings(f"{dim}D theta {theta:g}:", got, expected)
 
 
 def main():

@@ -17,18 +17,11 @@ Skipped (exit 77) where numpy or h5py is missing.
 
 usage: test_fusion_zone.py SOURCE_DIR WORK_DIR
 """
-import csv
 import os
 import shutil
-import subprocess
 import sys
 
-try:
-    import h5py
-    import numpy as np
-except ImportError as e:
-    print(f"skipped: {e}")
-    sys.exit(77)
+from tool_checks import check_readings, h5py, last_csv_row, np
 
 DX, R, D, SOLIDUS, SHIFT = 0.05, 0.97, 0.485, 1673.0, 0.3
 WALL, SOLID = 1, 2  # kernels/kinds.h
@@ -76,14 +69,7 @@ def check(source, work, dim):
     write(os.path.join(work, "snap_000000.h5"), dim, 0.0, start, kind, ident, np.full(len(start), 293.0))
     write(os.path.join(work, "snap_000001.h5"), dim, 1.0, moved[order], kind[order], ident[order], peak[order])
 
-    table = os.path.join(work, "fusion_zone.csv")
-    proc = subprocess.run([sys.executable, os.path.join(source, "tools", "fusion_zone.py"), work, "--csv", table],
-                          capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"fusion_zone.py failed:\n{proc.stdout}{proc.stderr}")
-    with open(table) as f:
-        row = list(csv.DictReader(f))[-1]
-    got = {k: float(v) for k, v in row.items()}
+    got = last_csv_row(source, "fusion_zone", work)
 
     def across(p):
         return np.sqrt((p[:, :dim - 1] ** 2).sum(axis=1))
@@ -98,12 +84,9 @@ def check(source, work, dim):
         "depth_isotherm_m": D * np.sqrt(1.0 - (nearest_column / R) ** 2),
     }
     tolerance = {"radius_isotherm_m": (0.25 if dim == 3 else 0.5) * DX, "depth_isotherm_m": 0.25 * DX}
-    failed = 0
-    for name, value in expected.items():
-        ok = abs(got[name] - value) <= tolerance.get(name, 1e-5 * max(1.0, abs(value)))  # the CSV has 6 digits
-        print(f"{'ok' if ok else 'FAILED'}: {dim}D {name} {got[name]:.6g}, expected {value:.6g}")
-        failed += not ok
-    return failed
+    # the CSV has 6 digits
+    return check_readings(f"{dim}D", got, {name: (value, tolerance.get(name, 1e-5 * max(1.0, abs(value))))
+                                           for name, value in expected.items()})
 
 
 def main():

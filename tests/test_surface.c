@@ -522,7 +522,8 @@ static void check_sessile_cap(const char *file, double theta0, double dx, double
     if (testing_load_case(file, &c))
         return;
     c.materials[0].contact_angle = theta0;
-    c.dx = dx > 0.0 ? dx : c.dx;
+    if (dx > 0.0)
+        amsph_case_set_spacing(&c, dx);
     c.end_time = end_time > 0.0 ? end_time : c.end_time;
     if (!testing_run_case(&c, 0, c.end_time, &h)) {
         const double angle = sessile_angle(&h, c.dim, c.dx);
