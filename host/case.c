@@ -441,6 +441,7 @@ static const key_spec specs[] = {
             "(lone particles, films a particle thick) carry no surface force"},
     {.section = SEC_SURFACE, .key = "interface_viscosity", .type = VT_NUMBER,
      .flags = F_FROM_LO, .lo = 0, .def = 0, .offset = SURFACE(interface_viscosity),
+     .rule = "adds the step limit 0.125 h_st^2 / nu, nu = alpha0 n_max h_st^2 c0 / (2 (d + 2)), n_max the largest colour gradient",
      .doc = "Factor α0 of the interface viscosity (Fuchs et al. 2022 Eqs. 31-32): an artificial "
             "viscosity α0 h |n| on the liquid at its free surface that damps spurious interface "
             "flows (7.2 in Fuchs's Table 1); a pair takes the larger factor of its two, so "

@@ -17,7 +17,8 @@ int amsph_surface_allocate(amsph_sim *s);
 int amsph_surface_forces(amsph_sim *s);
 /* Lowers *dt to the capillary limit 0.25 sqrt(rho h^3 / (2 pi sigma))
  * (Fuchs et al. 2022 Eq. 42; PHYSICS.md erratum 3) with the smallest
- * reference density and the largest sigma(T) of the particles. */
+ * reference density and the largest sigma(T) of the particles, and, with
+ * an interface viscosity, to its viscous limit (host/surface.c). */
 int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit);
 
 #endif
