@@ -249,14 +249,6 @@ static void material_extremes(const amsph_case *c, double *c0, double *nu)
     }
 }
 
-static void lower(double *dt, const char **limit, double candidate, const char *name)
-{
-    if (candidate < *dt) {
-        *dt = candidate;
-        *limit = name;
-    }
-}
-
 int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
 {
     double umax = 0.0, amax = 0.0, c0, nu;
@@ -267,13 +259,13 @@ int amsph_fluid_dt(amsph_sim *s, double *dt, const char **limit)
     double h = s->h;
     if (s->fluid.smoothing_length == SMOOTHING_VOLUME)
         AMSPH_CHECK(amsph_reduce_min(s->backend, s->particles.field[AMSPH_FIELD_SMOOTHING_LENGTH], s->particles.n, &h));
-    lower(dt, limit, s->config.fluid.cfl * h / (c0 + umax), "acoustic");
+    amsph_lower_dt(dt, limit, s->config.fluid.cfl * h / (c0 + umax), "acoustic");
     if (nu > 0.0)
-        lower(dt, limit, 0.125 * h * h / nu, "viscous");
+        amsph_lower_dt(dt, limit, 0.125 * h * h / nu, "viscous");
     if (amax > 0.0)
-        lower(dt, limit, 0.25 * sqrt(h / amax), "force");
+        amsph_lower_dt(dt, limit, 0.25 * sqrt(h / amax), "force");
     /* the contact condition of Fuchs et al. 2022 Eq. 42 for the barrier forces */
     if (s->config.fluid.barrier_stiffness > 0.0)
-        lower(dt, limit, 0.22 * sqrt(s->lightest_fluid_mass / s->config.fluid.barrier_stiffness), "barrier");
+        amsph_lower_dt(dt, limit, 0.22 * sqrt(s->lightest_fluid_mass / s->config.fluid.barrier_stiffness), "barrier");
     return 0;
 }

@@ -232,11 +232,7 @@ int amsph_grains_change_phase(amsph_sim *s)
 
 void amsph_grains_dt(const amsph_sim *s, double *dt, const char **limit)
 {
-    const double contact = 0.22 * sqrt(s->grains.smallest_mass / s->config.grains.stiffness);
-    if (contact < *dt) {
-        *dt = contact;
-        *limit = "contact";
-    }
+    amsph_lower_dt(dt, limit, 0.22 * sqrt(s->grains.smallest_mass / s->config.grains.stiffness), "contact");
 }
 
 int amsph_grains_save(amsph_sim *s, amsph_real **records, int *values)

@@ -388,14 +388,10 @@ static int stable_dt(amsph_sim *s, double *dt)
         AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_VELOCITY, &umax));
         const double *g = s->config.gravity;
         const double gnorm = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        if (umax > 0.0) {
-            *dt = 0.25 * s->h / umax;
-            s->dt_limit = "kinematic";
-        }
-        if (gnorm > 0.0 && 0.25 * sqrt(s->h / gnorm) < *dt) {
-            *dt = 0.25 * sqrt(s->h / gnorm);
-            s->dt_limit = "body force";
-        }
+        if (umax > 0.0)
+            amsph_lower_dt(dt, &s->dt_limit, 0.25 * s->h / umax, "kinematic");
+        if (gnorm > 0.0)
+            amsph_lower_dt(dt, &s->dt_limit, 0.25 * sqrt(s->h / gnorm), "body force");
     }
     if (s->config.surface.enabled)
         AMSPH_CHECK(amsph_surface_dt(s, dt, &s->dt_limit));

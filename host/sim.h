@@ -200,6 +200,16 @@ void amsph_sim_state_free(amsph_sim_state *st);
  * it before its kernels, and a nested one switches back to *previous. */
 int amsph_sim_phase(amsph_sim *s, amsph_phase next, amsph_phase *previous);
 
+/* Lowers the step *dt to candidate where that is smaller, and names the
+ * limit that set it (*limit, shown in the progress line and series.csv). */
+static inline void amsph_lower_dt(double *dt, const char **limit, double candidate, const char *name)
+{
+    if (candidate < *dt) {
+        *dt = candidate;
+        *limit = name;
+    }
+}
+
 /* Largest |v| over the particles of a 3-vector field (velocity, acceleration). */
 int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out);
 

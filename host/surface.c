@@ -195,45 +195,42 @@ int amsph_surface_forces(amsph_sim *s)
  * time. As a kinematic viscosity nu = alpha h_st c / (2 (d + 2)) (Monaghan
  * 2005, Rep. Prog. Phys. 68: alpha h c / 8 in 2D, / 10 in 3D) it takes
  * the fluid's viscous limit dt <= 0.125 h_st^2 / nu (Morris et al. 1997),
- * with the largest colour gradient |n| and the fastest sound speed of a
- * liquid. Without it a sessile cap at alpha0 = 14.4 and 8.5 dx ran at four
- * times this dt and its surface jittered at 0.05 m/s (BENCHMARKS.md). */
-static int interface_viscosity_dt(amsph_sim *s, double *dt, const char **limit)
+ * with the largest colour gradient |n| of any particle (on the 3D sessile
+ * cap a wall's free face reaches |n| h_st = 2.05, the liquid 1.9) and the
+ * fastest sound speed c0 of the materials that carry tension. Without it
+ * a sessile cap at alpha0 = 14.4 and 8.5 dx ran at four times this dt and
+ * its surface jittered at 0.05 m/s (BENCHMARKS.md). */
+static int interface_viscosity_dt(amsph_sim *s, double c0, double *dt, const char **limit)
 {
     const surface_params *p = &s->surface;
     if (p->interface_viscosity <= 0)
         return 0;
-    double largest_normal = 0.0, c0 = 0.0;
+    double largest_normal = 0.0;
     AMSPH_CHECK(amsph_sim_max_norm(s, AMSPH_FIELD_NORMAL, &largest_normal));
-    for (int m = 0; m < s->config.n_materials; ++m)
-        if (s->config.materials[m].phase != AMSPH_MATERIAL_GAS)
-            c0 = fmax(c0, s->config.materials[m].sound_speed);
     const double h = p->h, alpha = p->interface_viscosity * h * largest_normal;
     const double nu = alpha * h * c0 / (2.0 * (s->config.dim + 2));
-    if (nu > 0.0 && 0.125 * h * h / nu < *dt) {
-        *dt = 0.125 * h * h / nu;
-        *limit = "interface viscosity";
-    }
+    if (nu > 0.0)
+        amsph_lower_dt(dt, limit, 0.125 * h * h / nu, "interface viscosity");
     return 0;
 }
 
 int amsph_surface_dt(amsph_sim *s, double *dt, const char **limit)
 {
-    AMSPH_CHECK(interface_viscosity_dt(s, dt, limit));
-    double sigma = 0.0, rho = INFINITY;
+    double sigma = 0.0, rho = INFINITY, c0 = 0.0;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->particles.field[AMSPH_FIELD_SURFACE_TENSION],
                                  s->particles.n, &sigma));
     for (int m = 0; m < s->config.n_materials; ++m) {
+        const amsph_material *mat = &s->config.materials[m];
         double lowest, highest;
-        amsph_material_density_bounds(&s->config.materials[m], &lowest, &highest);
-        if (s->config.materials[m].phase != AMSPH_MATERIAL_GAS) /* a gas carries no tension */
+        amsph_material_density_bounds(mat, &lowest, &highest);
+        if (mat->phase != AMSPH_MATERIAL_GAS) { /* a gas carries no tension */
             rho = fmin(rho, lowest);
+            c0 = fmax(c0, mat->sound_speed);
+        }
     }
+    AMSPH_CHECK(interface_viscosity_dt(s, c0, dt, limit));
     const double h = s->h;
-    const double capillary = 0.25 * sqrt(rho * h * h * h / (2.0 * PI * sigma));
-    if (sigma > 0.0 && capillary < *dt) {
-        *dt = capillary;
-        *limit = "capillary";
-    }
+    if (sigma > 0.0)
+        amsph_lower_dt(dt, limit, 0.25 * sqrt(rho * h * h * h / (2.0 * PI * sigma)), "capillary");
     return 0;
 }

@@ -713,7 +713,7 @@ static double undamped_disc_speed(double alpha0)
     double largest = NAN;
     if (b && amsph_sim_create(&c, b, &s) == 0) {
         largest = 0.0;
-        for (int k = 1; k <= 4 && !isnan(largest); ++k) {
+        for (int k = 1; k <= 4; ++k) {
             double pressure, speed;
             if (amsph_sim_advance(&s, 0.25 * k, NULL, NULL) || amsph_particles_download(&s.particles, &h)) {
                 largest = NAN;
