@@ -751,7 +751,8 @@ static const key_spec specs[] = {
      .def = 0, .offset = GEO(fill), .rule = "not on the first block",
      .doc = "The block places only its lattice points farther than 0.75 dx from every particle of the "
             "blocks before it: a gas box filling the space around the other shapes (seamless where "
-            "their lattices line up with its own)"},
+            "their lattices line up with its own). Without it a block may not place a particle within "
+            "0.3 dx of one placed before it (blocks that overlap are refused)"},
 };
 /* clang-format on */
 

@@ -18,6 +18,7 @@
 #include "error.h"
 #include "output.h"
 #include "powder.h"
+#include "scene.h"
 #include "series.h"
 #include "sim.h"
 
@@ -33,7 +34,7 @@ static const char usage[] =
     "      [--max-steps N] [--checkpoint-interval SECONDS] [--restart CHECKPOINT]\n"
     "                      run a case; snapshots OUTDIR/snap_NNNNNN.h5 and OUTDIR/snapshots.xmf,\n"
     "                      diagnostics OUTDIR/series.csv, checkpoints OUTDIR/checkpoint.h5\n"
-    "  check CASE.yaml     validate a case file without running it\n"
+    "  check CASE.yaml     validate a case file and build its scene without running it\n"
     "  devices             list the OpenCL devices and the OpenMP backend\n"
     "  keys                print the case-file key reference (Markdown)\n"
     "  columns             print the series.csv column reference (Markdown)\n"
@@ -374,16 +375,23 @@ static int command_run(const cli_options *o)
     return status ? status : stop_signal ? 128 + (int)stop_signal : 0;
 }
 
+/* Parses the case and builds its scene (the errors of placing the blocks:
+ * overlaps, empty blocks, particles outside the domain), as `run` would. */
 static int command_check(const cli_options *o)
 {
     amsph_case c;
     int status = load_case(o->case_path, &c);
-    if (!status) {
-        printf("%s: ok (dimension %d, %d materials, %d geometry blocks)\n", c.path, c.dim,
-               c.n_materials, c.n_geometry);
-        status = report_powder_beds(&c, stdout);
-    }
-    return status;
+    if (status)
+        return status;
+    amsph_host_particles h;
+    status = amsph_scene_build(&c, &h);
+    if (!status)
+        printf("%s: ok (dimension %d, %d materials, %d geometry blocks, %d particles)\n", c.path, c.dim,
+               c.n_materials, c.n_geometry, h.n);
+    amsph_host_free(&h);
+    if (status)
+        return failed(status);
+    return report_powder_beds(&c, stdout);
 }
 
 static int bench_grid(const cli_options *o, amsph_backend *b)

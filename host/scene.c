@@ -98,9 +98,9 @@ static int check_inside_domain(const amsph_case *c, const amsph_geometry *g, con
 {
     for (int d = 0; d < c->dim; ++d)
         if (x[d] < c->domain_min[d] || x[d] > c->domain_max[d])
-            return amsph_fail("%s:%d: geometry block places a particle at %c = %g m, outside the "
-                              "domain [%g, %g]; enlarge the domain or move the block",
-                              c->path, g->line, "xyz"[d], x[d], c->domain_min[d], c->domain_max[d]);
+            return amsph_bad_input("%s:%d: geometry block places a particle at %c = %g m, outside the "
+                                   "domain [%g, %g]; enlarge the domain or move the block",
+                                   c->path, g->line, "xyz"[d], x[d], c->domain_min[d], c->domain_max[d]);
     return 0;
 }
 
@@ -142,8 +142,15 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
  * spacing. */
 #define FILL_CLEARANCE 0.75
 
+/* Any other block may not place a particle closer than this many dx to one
+ * placed before it: blocks that overlap would put particles on top of each
+ * other (twice the mass there, and no force between a coincident pair), and
+ * the run's spacing guard stops below 0.3 dx by default. Blocks that meet
+ * on lattices offset by half a spacing (0.5 dx) pass. */
+#define OVERLAP_CLEARANCE 0.3
+
 /* The particles placed so far, bucketed in cells of dx over the domain, for
- * the `fill` test. */
+ * the `fill` and overlap tests. */
 typedef struct {
     int dim, cells[3];
     double lo[3], size;
@@ -186,7 +193,7 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
     o->x = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *o->x);
     if (!o->start || !o->x) {
         occupied_free(o);
-        return amsph_fail("out of host memory for a 'fill' block (%lld cells)", total);
+        return amsph_fail("out of host memory for the cells of the particles placed (%lld cells)", total);
     }
     int cc[3];
     for (int i = 0; i < n; ++i) {
@@ -198,7 +205,7 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
     int *next = malloc((size_t)total * sizeof *next);
     if (!next) {
         occupied_free(o);
-        return amsph_fail("out of host memory for a 'fill' block (%lld cells)", total);
+        return amsph_fail("out of host memory for the cells of the particles placed (%lld cells)", total);
     }
     memcpy(next, o->start, (size_t)total * sizeof *next);
     for (int i = 0; i < n; ++i) {
@@ -211,10 +218,10 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
     return 0;
 }
 
-/* Is a particle placed before within FILL_CLEARANCE dx of x? */
-static int occupied_near(const occupied *o, const double x[3])
+/* Is a particle placed before within `clearance` dx of x? */
+static int occupied_near(const occupied *o, const double x[3], double clearance)
 {
-    const double reach2 = FILL_CLEARANCE * FILL_CLEARANCE * o->size * o->size;
+    const double reach2 = clearance * clearance * o->size * o->size;
     int cc[3] = {0, 0, 0};
     occupied_cell(o, x, cc);
     const int lo[3] = {-1, o->dim > 1 ? -1 : 0, o->dim > 2 ? -1 : 0};
@@ -239,10 +246,20 @@ static int occupied_near(const occupied *o, const double x[3])
     return 0;
 }
 
+/* A lattice point of block g that lies on a particle of the blocks before it. */
+static int overlap_error(const amsph_case *c, const amsph_geometry *g, const double x[3])
+{
+    return amsph_bad_input("%s:%d: geometry block places a particle at (%g, %g, %g) m within %g dx of a "
+                           "particle of a block before it: the blocks overlap; move or shrink one, or "
+                           "give this one 'fill: true' to fill only the space the others leave",
+                           c->path, g->line, x[0], x[1], x[2], OVERLAP_CLEARANCE);
+}
+
 /* Visits the lattice points of block g (a `fill` block: those away from the
- * particles in `before`): counts them, or (h != NULL) checks and stores
- * them from particle index h->n - count onwards. A block of kind grain is
- * grain first_grain; a powder bed's grain i is first_grain + i. */
+ * particles in `before`; any other block: an error where one lies on them):
+ * counts them, or (h != NULL) checks and stores them from particle index
+ * h->n - count onwards. A block of kind grain is grain first_grain; a powder
+ * bed's grain i is first_grain + i. */
 static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
                        const occupied *before, int first_grain, amsph_host_particles *h, long long *count)
 {
@@ -253,8 +270,13 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
     for (long long k = 0; k < points; ++k) {
         double x[3];
         lattice_point(&l, k, x);
-        if (!block_contains(g, bed, x, c->dim) || (before && occupied_near(before, x)))
+        if (!block_contains(g, bed, x, c->dim))
             continue;
+        if (before && occupied_near(before, x, g->fill ? FILL_CLEARANCE : OVERLAP_CLEARANCE)) {
+            if (!g->fill)
+                return overlap_error(c, g, x);
+            continue;
+        }
         if (h) {
             AMSPH_CHECK(check_inside_domain(c, g, x));
             set_particle(c, g, x, first_grain + (bed ? amsph_powder_grain_at(bed, x) : 0), h,
@@ -422,20 +444,21 @@ static int place_block(const amsph_case *c, const amsph_geometry *g, const amsph
     long long count = 0;
     AMSPH_CHECK(visit_block(c, g, bed, before, first_grain, NULL, &count));
     if (count == 0)
-        return amsph_fail("%s:%d: geometry block holds no particle at dx = %g m; make it larger "
-                          "than dx%s",
-                          c->path, g->line, c->dx, before ? " (or the blocks before it fill it)" : "");
+        return amsph_bad_input("%s:%d: geometry block holds no particle at dx = %g m; make it larger "
+                               "than dx%s",
+                               c->path, g->line, c->dx, g->fill ? " (or the blocks before it fill it)" : "");
     if (h->n + count > 2147483647LL)
         return amsph_fail("%s:%d: the scene would exceed 2^31 particles", c->path, g->line);
     AMSPH_CHECK(amsph_host_resize(h, h->n + (int)count));
     return visit_block(c, g, bed, before, first_grain, h, &count);
 }
 
-/* Block g's particles; a `fill` block's only away from those placed so far. */
+/* Block g's particles; a `fill` block's only away from those placed so far,
+ * any other's nowhere near them. */
 static int fill_block(const amsph_case *c, const amsph_geometry *g, const amsph_powder *bed,
                       int first_grain, amsph_host_particles *h)
 {
-    if (!g->fill)
+    if (h->n == 0)
         return place_block(c, g, bed, NULL, first_grain, h);
     occupied before;
     AMSPH_CHECK(occupied_build(c, h, h->n, &before));
@@ -458,10 +481,10 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
     }
     const double smallest = amsph_powder_smallest_radius(g);
     if (smallest < GRAIN_RADIUS_MIN_DX * c->dx)
-        return amsph_fail("%s:%d: powder grains of radius %g m are not resolved at dx = %g m; "
-                          "make dx at most %g m (a radius of %g dx)",
-                          c->path, g->line, smallest, c->dx, smallest / GRAIN_RADIUS_MIN_DX,
-                          GRAIN_RADIUS_MIN_DX);
+        return amsph_bad_input("%s:%d: powder grains of radius %g m are not resolved at dx = %g m; "
+                               "make dx at most %g m (a radius of %g dx)",
+                               c->path, g->line, smallest, c->dx, smallest / GRAIN_RADIUS_MIN_DX,
+                               GRAIN_RADIUS_MIN_DX);
     amsph_powder bed;
     AMSPH_CHECK(amsph_powder_deposit(g, c->dim, &bed));
     *next_grain += g->kind == AMSPH_KIND_GRAIN ? bed.n : 0;
@@ -493,9 +516,9 @@ int amsph_scene_build(const amsph_case *c, amsph_host_particles *h)
         if (with_temperature != c->n_geometry)
             for (int k = 0; k < c->n_geometry; ++k)
                 if (!c->geometry[k].has_temperature)
-                    return amsph_fail("%s:%d: this geometry block has no 'temperature' while others "
-                                      "do; give every block an initial temperature",
-                                      c->path, c->geometry[k].line);
+                    return amsph_bad_input("%s:%d: this geometry block has no 'temperature' while others "
+                                           "do; give every block an initial temperature",
+                                           c->path, c->geometry[k].line);
         AMSPH_CHECK(amsph_host_add_field(h, AMSPH_FIELD_TEMPERATURE));
     }
     if (c->grains.enabled)

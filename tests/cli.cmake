@@ -34,6 +34,26 @@ expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml)
 expect_text("-o OUTDIR")
 expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml -o ${WORK}/x --backend cuda)
 expect_text("--backend takes openmp or opencl")
+# Geometry blocks that would place particles on top of each other are bad
+# input for check and run alike; a `fill` block fills around the others.
+set(overlap "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05\nend_time: 0.01
+output_interval: 0.01\nmaterials:\n  - {name: water, density: 1000, sound_speed: 10}\ngeometry:
+  - {shape: box, kind: fluid, material: water, min: [0.1, 0.1], max: [0.5, 0.5]}
+  - {shape: box, kind: fluid, material: water, min: [0.3, 0.3], max: [0.7, 0.7]SECOND}\n")
+string(REPLACE "SECOND" "" text "${overlap}")
+file(WRITE ${WORK}/overlap.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/overlap.yaml)
+expect_text("overlap.yaml:10: geometry block places a particle at (0.325, 0.325, 0) m within 0.3 dx")
+expect_status(2 ${AMSPH} run ${WORK}/overlap.yaml -o ${WORK}/x --quiet)
+expect_text("the blocks overlap")
+string(REPLACE "SECOND" ", fill: true" text "${overlap}")
+file(WRITE ${WORK}/overlap_fill.yaml "${text}")
+expect_status(0 ${AMSPH} check ${WORK}/overlap_fill.yaml)
+expect_text("2 geometry blocks, 112 particles)") # 8 x 8 each, less the 4 x 4 shared
+string(REPLACE "0.7, 0.7]SECOND" "0.32, 0.32]" text "${overlap}")
+file(WRITE ${WORK}/empty_block.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/empty_block.yaml)
+expect_text("empty_block.yaml:10: geometry block holds no particle at dx = 0.05 m")
 expect_status(2 ${AMSPH} frobnicate)
 expect_text("unknown command")
 expect_status(0 ${AMSPH} --help)
