@@ -156,6 +156,7 @@ typedef struct {
     double lo[3], size;
     int *start; /* cells + 1 offsets into order */
     amsph_real *x; /* their positions, by cell (a copy: placing the block resizes h) */
+    int *index;    /* their indices in h, by cell */
 } occupied;
 
 static int occupied_cell(const occupied *o, const double x[3], int cc[3])
@@ -174,6 +175,7 @@ static void occupied_free(occupied *o)
 {
     free(o->start);
     free(o->x);
+    free(o->index);
 }
 
 /* Buckets the first n particles of h (a counting sort by cell). */
@@ -191,7 +193,8 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
     }
     o->start = calloc((size_t)total + 1, sizeof *o->start);
     o->x = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *o->x);
-    if (!o->start || !o->x) {
+    o->index = malloc((size_t)(n > 0 ? n : 1) * sizeof *o->index);
+    if (!o->start || !o->x || !o->index) {
         occupied_free(o);
         return amsph_fail("out of host memory for the cells of the particles placed (%lld cells)", total);
     }
@@ -213,21 +216,28 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
         const int slot = next[occupied_cell(o, x, cc)]++;
         for (int d = 0; d < 3; ++d)
             o->x[3 * slot + d] = x_h[3 * i + d];
+        o->index[slot] = i;
     }
     free(next);
     return 0;
 }
 
-/* Is a particle placed before within `clearance` dx of x? */
-static int occupied_near(const occupied *o, const double x[3], double clearance)
+/* Which particles count in occupied_find: partner(ctx, j) for particle j of h. */
+typedef int (*occupied_partner)(const void *ctx, int j);
+
+/* The index in h of a particle within `clearance` dx of x that `partner`
+ * accepts (any, without one), or -1. */
+static int occupied_find(const occupied *o, const double x[3], double clearance, occupied_partner partner,
+                         const void *ctx)
 {
     const double reach2 = clearance * clearance * o->size * o->size;
+    const int m = (int)ceil(clearance); /* cells of dx each side */
     int cc[3] = {0, 0, 0};
     occupied_cell(o, x, cc);
-    const int lo[3] = {-1, o->dim > 1 ? -1 : 0, o->dim > 2 ? -1 : 0};
+    const int lo[3] = {-m, o->dim > 1 ? -m : 0, o->dim > 2 ? -m : 0};
     for (int k2 = lo[2]; k2 <= -lo[2]; ++k2)
         for (int k1 = lo[1]; k1 <= -lo[1]; ++k1)
-            for (int k0 = -1; k0 <= 1; ++k0) {
+            for (int k0 = -m; k0 <= m; ++k0) {
                 const int k[3] = {cc[0] + k0, cc[1] + k1, cc[2] + k2};
                 int cell = 0, inside = 1;
                 for (int d = o->dim - 1; d >= 0; --d) {
@@ -239,11 +249,17 @@ static int occupied_near(const occupied *o, const double x[3], double clearance)
                     double r2 = 0.0;
                     for (int d = 0; d < o->dim; ++d)
                         r2 += (x[d] - y[d]) * (x[d] - y[d]);
-                    if (r2 < reach2)
-                        return 1;
+                    if (r2 < reach2 && (!partner || partner(ctx, o->index[j])))
+                        return o->index[j];
                 }
             }
-    return 0;
+    return -1;
+}
+
+/* Is a particle placed before within `clearance` dx of x? */
+static int occupied_near(const occupied *o, const double x[3], double clearance)
+{
+    return occupied_find(o, x, clearance, NULL, NULL) >= 0;
 }
 
 /* A lattice point of block g that lies on a particle of the blocks before it. */
@@ -493,6 +509,65 @@ static int add_block(const amsph_case *c, const amsph_geometry *g, amsph_host_pa
     return status;
 }
 
+/* Grain particles closer than this fraction of the contact distance to a
+ * contact partner start pressed: the contact spring (Fuchs et al. 2022 Eq.
+ * 39) throws them apart at the first step. A powder bed samples all its
+ * grains on one lattice (pairs of touching grains dx apart), so do blocks
+ * on lattices that line up; `circle` blocks about other centres do not
+ * (0.36 dx apart on a bed of touching discs: its grains flew apart at up to
+ * 9 m/s before anything touched them). */
+#define PRESSED_FRACTION 0.9
+
+typedef struct {
+    const int *kind, *grain;
+    int of; /* the grain particle whose partners are sought */
+} contact_partners;
+
+/* Particle j of another grain, a wall or a fixed solid: what grain particle
+ * `of` has contact forces with (kernels/grains.cl grain_particle_forces). */
+static int is_contact_partner(const void *ctx, int j)
+{
+    const contact_partners *p = ctx;
+    return p->kind[j] != AMSPH_KIND_FLUID && (p->kind[j] != AMSPH_KIND_GRAIN || p->grain[j] != p->grain[p->of]);
+}
+
+/* Refuses grains that start pressed against other grains, walls or solids. */
+static int check_grain_contacts(const amsph_case *c, const int first[], const amsph_host_particles *h)
+{
+    occupied all;
+    AMSPH_CHECK(occupied_build(c, h, h->n, &all));
+    contact_partners p = {.kind = h->data[AMSPH_FIELD_KIND], .grain = h->data[AMSPH_FIELD_GRAIN]};
+    const amsph_real *x_h = amsph_host_real(h, AMSPH_FIELD_POSITION);
+    const double clearance = PRESSED_FRACTION * c->grains.distance / c->dx;
+    int partner = -1;
+    for (p.of = 0; p.of < h->n && partner < 0; ++p.of) {
+        const double x[3] = {x_h[3 * p.of], x_h[3 * p.of + 1], x_h[3 * p.of + 2]};
+        if (p.kind[p.of] == AMSPH_KIND_GRAIN)
+            partner = occupied_find(&all, x, clearance, is_contact_partner, &p);
+    }
+    occupied_free(&all);
+    if (partner < 0)
+        return 0;
+    const int i = p.of - 1;
+    int k = 0;
+    while (first[k + 1] <= i)
+        ++k;
+    double r2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+        r2 += (x_h[3 * i + d] - x_h[3 * partner + d]) * (x_h[3 * i + d] - x_h[3 * partner + d]);
+    const int kind = p.kind[partner];
+    return amsph_bad_input("%s:%d: a grain particle at (%g, %g, %g) m starts %.3g dx from a particle of %s, "
+                           "inside the contact distance (%.3g dx): the contact springs would throw them "
+                           "apart; leave a contact distance between them (a powder_bed block samples its "
+                           "grains on one lattice)",
+                           c->path, c->geometry[k].line, x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2],
+                           sqrt(r2) / c->dx,
+                           kind == AMSPH_KIND_GRAIN  ? "another grain"
+                           : kind == AMSPH_KIND_WALL ? "a wall"
+                                                     : "a fixed solid",
+                           c->grains.distance / c->dx);
+}
+
 static int temperature_given(const amsph_case *c)
 {
     int given = 0;
@@ -529,5 +604,7 @@ int amsph_scene_build(const amsph_case *c, amsph_host_particles *h)
         AMSPH_CHECK(add_block(c, &c->geometry[k], h, &next_grain));
     }
     first[c->n_geometry] = h->n;
+    if (c->grains.enabled)
+        AMSPH_CHECK(check_grain_contacts(c, first, h));
     return set_hydrostatic(c, first, h);
 }

@@ -54,6 +54,21 @@ string(REPLACE "0.7, 0.7]SECOND" "0.32, 0.32]" text "${overlap}")
 file(WRITE ${WORK}/empty_block.yaml "${text}")
 expect_status(2 ${AMSPH} check ${WORK}/empty_block.yaml)
 expect_text("empty_block.yaml:10: geometry block holds no particle at dx = 0.05 m")
+# Grains that start closer than the contact distance to another grain are
+# bad input: two discs of 2 dx sampled about their own centres, their
+# nearest particles 0.4 dx apart (centres 0.17 apart), then 1 dx (0.2).
+set(pressed "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05\nend_time: 0.01
+output_interval: 0.01\nfluid: {}\ngrains: {contact_stiffness: 1.0e3, contact_damping: 0.1}
+materials:\n  - {name: steel, density: 7000, sound_speed: 10}\ngeometry:
+  - {shape: circle, kind: grain, material: steel, center: [0.3, 0.5], radius: 0.1}
+  - {shape: circle, kind: grain, material: steel, center: [SECOND, 0.5], radius: 0.1}\n")
+string(REPLACE "SECOND" "0.47" text "${pressed}")
+file(WRITE ${WORK}/pressed.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/pressed.yaml)
+expect_text("pressed.yaml:11: a grain particle at (0.375, 0.475, 0) m starts 0.4 dx from a particle of another grain")
+string(REPLACE "SECOND" "0.5" text "${pressed}")
+file(WRITE ${WORK}/apart.yaml "${text}")
+expect_status(0 ${AMSPH} check ${WORK}/apart.yaml)
 expect_status(2 ${AMSPH} frobnicate)
 expect_text("unknown command")
 expect_status(0 ${AMSPH} --help)
