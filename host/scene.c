@@ -539,17 +539,20 @@ static int check_grain_contacts(const amsph_case *c, const int first[], const am
     contact_partners p = {.kind = h->data[AMSPH_FIELD_KIND], .grain = h->data[AMSPH_FIELD_GRAIN]};
     const amsph_real *x_h = amsph_host_real(h, AMSPH_FIELD_POSITION);
     const double clearance = PRESSED_FRACTION * c->grains.distance / c->dx;
-    int partner = -1;
-    for (p.of = 0; p.of < h->n && partner < 0; ++p.of) {
-        const double x[3] = {x_h[3 * p.of], x_h[3 * p.of + 1], x_h[3 * p.of + 2]};
-        if (p.kind[p.of] == AMSPH_KIND_GRAIN)
-            partner = occupied_find(&all, x, clearance, is_contact_partner, &p);
+    int i, partner = -1;
+    for (i = 0; i < h->n; ++i) {
+        if (p.kind[i] != AMSPH_KIND_GRAIN)
+            continue;
+        const double x[3] = {x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2]};
+        p.of = i;
+        partner = occupied_find(&all, x, clearance, is_contact_partner, &p);
+        if (partner >= 0)
+            break;
     }
     occupied_free(&all);
     if (partner < 0)
         return 0;
-    const int i = p.of - 1;
-    int k = 0;
+    int k = 0; /* the block of particle i */
     while (first[k + 1] <= i)
         ++k;
     double r2 = 0.0;
