@@ -12,7 +12,10 @@ have moved 0.3 m along x. Checked:
     0.02 and 0.015 m off) and dx / 2 in 2D (a width of whole particles);
   - initial: the lattice's fused extremes plus dx / 2, to the CSV's six
     digits (the moved particles are found by id where they started);
-  - final: the moved particles' largest distance from the axis plus dx / 2.
+  - final: the moved particles' largest distance from the axis plus dx / 2;
+  - --base-top 0 with a molten droplet (peak 2500 K, radius 0.5 m) resting
+    on the surface: the same readings, the droplet left out (without the
+    option the surface would be read at the droplet's top).
 Skipped (exit 77) where numpy or h5py is missing.
 
 usage: test_fusion_zone.py SOURCE_DIR WORK_DIR
@@ -24,7 +27,7 @@ import sys
 from tool_checks import check_readings, h5py, last_csv_row, np
 
 DX, R, D, SOLIDUS, SHIFT = 0.05, 0.97, 0.485, 1673.0, 0.3
-WALL, SOLID = 1, 2  # kernels/kinds.h
+FLUID, WALL, SOLID = 0, 1, 2  # kernels/kinds.h
 
 
 def lattice(dim):
@@ -54,14 +57,31 @@ def write(path, dim, time, position, kind, ident, peak):
         f["peak_temperature"] = peak.astype(np.float32)
 
 
-def check(source, work, dim):
-    """Runs the tool on the dim-D zone; returns the number of failed checks."""
+def droplet(dim):
+    """Centres of a molten droplet of radius 0.5 m resting on the surface."""
+    x = np.arange(-0.5 + 0.5 * DX, 0.5, DX)
+    axes = (x, x, x + 0.5) if dim == 3 else (x, x + 0.5, np.zeros(1))
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    centre = np.array([0.0, 0.0, 0.5]) if dim == 3 else np.array([0.0, 0.5, 0.0])
+    return grid[((grid - centre) ** 2).sum(axis=1) < 0.25]
+
+
+def check(source, work, dim, with_droplet=False):
+    """Runs the tool on the dim-D zone (under a molten droplet, read with
+    --base-top 0); returns the number of failed checks."""
     os.makedirs(work)
     start, kind = lattice(dim)
-    ident = np.arange(len(start), dtype=np.uint32)
     peak = np.where(kind == WALL, 293.0, ellipsoid_peak(start, dim))
     fused = peak >= SOLIDUS
     top = start[:, dim - 1] > -DX
+    if with_droplet:
+        drop = droplet(dim)
+        start = np.concatenate([start, drop])
+        kind = np.concatenate([kind, np.full(len(drop), FLUID, dtype=np.int32)])
+        peak = np.concatenate([peak, np.full(len(drop), 2500.0)])
+        fused = np.concatenate([fused, np.zeros(len(drop), dtype=bool)])
+        top = np.concatenate([top, np.zeros(len(drop), dtype=bool)])
+    ident = np.arange(len(start), dtype=np.uint32)
     moved = start.copy()
     moved[fused & top, 0] += SHIFT
     moved = moved.astype(np.float32).astype(float)
@@ -69,7 +89,7 @@ def check(source, work, dim):
     write(os.path.join(work, "snap_000000.h5"), dim, 0.0, start, kind, ident, np.full(len(start), 293.0))
     write(os.path.join(work, "snap_000001.h5"), dim, 1.0, moved[order], kind[order], ident[order], peak[order])
 
-    got = last_csv_row(source, "fusion_zone", work)
+    got = last_csv_row(source, "fusion_zone", work, *(["--base-top", "0"] if with_droplet else []))
 
     def across(p):
         return np.sqrt((p[:, :dim - 1] ** 2).sum(axis=1))
@@ -85,7 +105,7 @@ def check(source, work, dim):
     }
     tolerance = {"radius_isotherm_m": (0.25 if dim == 3 else 0.5) * DX, "depth_isotherm_m": 0.25 * DX}
     # the CSV has 6 digits
-    return check_readings(f"{dim}D", got, {name: (value, tolerance.get(name, 1e-5 * max(1.0, abs(value))))
+    return check_readings(f"{dim}D{' under a droplet' if with_droplet else ''}", got, {name: (value, tolerance.get(name, 1e-5 * max(1.0, abs(value))))
                                            for name, value in expected.items()})
 
 
@@ -93,7 +113,8 @@ def main():
     source, work = sys.argv[1:3]
     shutil.rmtree(work, ignore_errors=True)
     failed = sum(check(source, os.path.join(work, f"{dim}d"), dim) for dim in (3, 2))
-    print(f"{12 - failed} passed, {failed} failed")
+    failed += check(source, os.path.join(work, "3d_droplet"), 3, with_droplet=True)
+    print(f"{18 - failed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
 
 

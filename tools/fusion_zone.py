@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fusion zone of a spot weld: radius and depth of the metal that melted.
 
-    tools/fusion_zone.py OUTDIR [--solidus 1673] [--axis 0,0] [--csv fz.csv]
+    tools/fusion_zone.py OUTDIR [--solidus 1673] [--axis 0,0] [--base-top Z] [--csv fz.csv]
 
 The fusion zone is every fluid or solid particle whose peak_temperature
 reached the solidus (He, Fuerschbach & DebRoy 2003 etch the weld's cross
@@ -25,7 +25,9 @@ dx wide:
            layer's bottom if every layer did).
 
 The initial surface is the highest non-wall particle of the first snapshot +
-dx/2; the beam axis is vertical (the last axis: y in 2D, z in 3D) through
+dx/2. With --base-top Z it is Z, and only the particles that started below Z
+count (the remelt depth of a substrate under a droplet that was molten from
+the start, as in material jetting). The beam axis is vertical (the last axis: y in 2D, z in 3D) through
 --axis.
 """
 import argparse
@@ -78,6 +80,10 @@ def main():
     ap.add_argument("outdir", help="output folder of amsph run (snap_*.h5)")
     ap.add_argument("--solidus", type=float, default=1673.0, help="solidus temperature, K (304 steel: 1673)")
     ap.add_argument("--axis", help="beam axis: its horizontal coordinates, m (x,y in 3D, x in 2D; default 0)")
+    ap.add_argument("--base-top", type=float,
+                    help="top of the base metal, m (vertical coordinate): only particles that started below it "
+                         "count, depths are read from it (default: the first snapshot's highest non-wall particle "
+                         "+ dx/2, all non-wall particles count)")
     ap.add_argument("--csv", help="also write the table to this CSV file")
     args = ap.parse_args()
 
@@ -90,10 +96,12 @@ def main():
     if len(across) != up:
         raise SystemExit(f"--axis takes {up} coordinate(s) for a {first['dim']}D run, got '{args.axis}'")
     axis = np.array(across + [0.0])
-    material = first["kind"] != WALL
-    surface = positions(first)[material, up].max() + 0.5 * first["dx"]
     start = np.full((int(first["id"].max()) + 1, first["dim"]), np.nan)
     start[first["id"]] = positions(first)
+    if args.base_top is None:
+        surface = positions(first)[first["kind"] != WALL, up].max() + 0.5 * first["dx"]
+    else:
+        surface = args.base_top
 
     rows = ["time_s,fused_particles,radius_final_m,depth_final_m,radius_initial_m,depth_initial_m,"
             "radius_isotherm_m,depth_isotherm_m"]
@@ -101,13 +109,13 @@ def main():
           f"{'depth: final':>13} {'initial':>8} {'isotherm':>9}  (mm)")
     for path in snapshots:
         s = snapshot(path)
-        material = s["kind"] != WALL
+        origin = start[s["id"]]
+        material = (s["kind"] != WALL) & (origin[:, up] < surface)
         peak = s["peak_temperature"].astype(float)
         fused = material & (peak >= args.solidus)
         if not fused.any():
             continue
         final = extent(positions(s)[fused], axis, surface, s["dx"])
-        origin = start[s["id"]]
         initial = extent(origin[fused], axis, surface, s["dx"])
         iso = isotherm(origin[material], peak[material], args.solidus, axis, surface, s["dx"])
         rows.append(f"{s['time']:.6g},{fused.sum()}," + ",".join(f"{v:.6g}" for v in (*final, *initial, *iso)))
