@@ -1,5 +1,6 @@
 #include "scene.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,15 +16,22 @@ typedef struct {
     int dim;
     double lo[3], dx;
     int count[3];
+    double points; /* count[0] count[1] count[2], before any axis is clipped to INT_MAX */
 } lattice;
+
+/* A block whose lattice has more points than this is refused before it is
+ * walked: 2^34, eight times the particles a scene may hold (a shell of
+ * wall layers or a long cylinder walks more points than it places). */
+#define LATTICE_POINTS_MAX 17179869184.0
 
 static lattice lattice_over(int dim, const double lo[3], const double hi[3], double dx)
 {
-    lattice l = {.dim = dim, .dx = dx, .count = {1, 1, 1}};
+    lattice l = {.dim = dim, .dx = dx, .count = {1, 1, 1}, .points = 1.0};
     for (int d = 0; d < dim; ++d) {
         l.lo[d] = lo[d];
-        const int n = (int)floor((hi[d] - lo[d]) / dx + 0.5);
-        l.count[d] = n > 0 ? n : 0;
+        const double n = floor((hi[d] - lo[d]) / dx + 0.5);
+        l.count[d] = n > 0.0 ? n < INT_MAX ? (int)n : INT_MAX : 0;
+        l.points *= n > 0.0 ? n : 0.0;
     }
     return l;
 }
@@ -149,26 +157,44 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
  * on lattices offset by half a spacing (0.5 dx) pass. */
 #define OVERLAP_CLEARANCE 0.3
 
-/* The particles placed so far, bucketed in cells of dx over the domain, for
- * the `fill` and overlap tests. */
+/* The particles placed so far, for the `fill`, overlap and contact tests:
+ * bucketed by a hash of their cell of dx (cells are not bounded by the
+ * domain's size at dx: two small blocks far apart in a large domain take
+ * memory for their particles only). Cells that share a bucket are told
+ * apart by the distance test of occupied_find. */
 typedef struct {
-    int dim, cells[3];
+    int dim;
     double lo[3], size;
-    int *start; /* cells + 1 offsets into order */
-    amsph_real *x; /* their positions, by cell (a copy: placing the block resizes h) */
-    int *index;    /* their indices in h, by cell */
+    unsigned long long buckets; /* a power of two */
+    int *start;    /* buckets + 1 offsets into x and index */
+    amsph_real *x; /* their positions, by bucket (a copy: placing the block resizes h) */
+    int *index;    /* their indices in h, by bucket */
 } occupied;
 
-static int occupied_cell(const occupied *o, const double x[3], int cc[3])
+/* Cell coordinates of x, in cells of o->size from o->lo. */
+static void occupied_cell(const occupied *o, const double x[3], long long cc[3])
 {
-    int cell = 0;
-    for (int d = o->dim - 1; d >= 0; --d) {
-        int k = (int)floor((x[d] - o->lo[d]) / o->size);
-        k = k < 0 ? 0 : k >= o->cells[d] ? o->cells[d] - 1 : k;
-        cc[d] = k;
-        cell = cell * o->cells[d] + k;
+    for (int d = 0; d < 3; ++d)
+        cc[d] = d < o->dim ? (long long)floor((x[d] - o->lo[d]) / o->size) : 0;
+}
+
+/* The bucket of cell cc (a 64-bit mix of its coordinates). */
+static unsigned long long occupied_bucket(const occupied *o, const long long cc[3])
+{
+    unsigned long long key = 0x9e3779b97f4a7c15ULL;
+    for (int d = 0; d < 3; ++d) {
+        key ^= (unsigned long long)cc[d] + 0x9e3779b97f4a7c15ULL + (key << 6) + (key >> 2);
+        key ^= key >> 31;
+        key *= 0xbf58476d1ce4e5b9ULL;
     }
-    return cell;
+    return (key ^ (key >> 29)) & (o->buckets - 1);
+}
+
+static unsigned long long bucket_of_point(const occupied *o, const double x[3])
+{
+    long long cc[3];
+    occupied_cell(o, x, cc);
+    return occupied_bucket(o, cc);
 }
 
 static void occupied_free(occupied *o)
@@ -178,42 +204,38 @@ static void occupied_free(occupied *o)
     free(o->index);
 }
 
-/* Buckets the first n particles of h (a counting sort by cell). */
+/* Buckets the first n particles of h (a counting sort by bucket; twice as
+ * many buckets as particles). */
 static int occupied_build(const amsph_case *c, const amsph_host_particles *h, int n, occupied *o)
 {
     memset(o, 0, sizeof *o);
     o->dim = c->dim;
     o->size = c->dx;
-    const amsph_real *x_h = amsph_host_real(h, AMSPH_FIELD_POSITION);
-    long long total = 1;
-    for (int d = 0; d < 3; ++d) {
+    for (int d = 0; d < 3; ++d)
         o->lo[d] = c->domain_min[d];
-        o->cells[d] = d < c->dim ? (int)ceil((c->domain_max[d] - c->domain_min[d]) / o->size) + 1 : 1;
-        total *= o->cells[d];
-    }
-    o->start = calloc((size_t)total + 1, sizeof *o->start);
+    o->buckets = 1;
+    while (o->buckets < 2ULL * (unsigned long long)n)
+        o->buckets *= 2;
+    const amsph_real *x_h = amsph_host_real(h, AMSPH_FIELD_POSITION);
+    o->start = calloc((size_t)o->buckets + 1, sizeof *o->start);
     o->x = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *o->x);
     o->index = malloc((size_t)(n > 0 ? n : 1) * sizeof *o->index);
-    if (!o->start || !o->x || !o->index) {
+    int *next = malloc((size_t)o->buckets * sizeof *next);
+    if (!o->start || !o->x || !o->index || !next) {
+        free(next);
         occupied_free(o);
-        return amsph_fail("out of host memory for the cells of the particles placed (%lld cells)", total);
+        return amsph_fail("out of host memory bucketing the %d particles placed", n);
     }
-    int cc[3];
     for (int i = 0; i < n; ++i) {
         const double x[3] = {x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2]};
-        ++o->start[occupied_cell(o, x, cc) + 1];
+        ++o->start[bucket_of_point(o, x) + 1];
     }
-    for (long long k = 0; k < total; ++k)
+    for (unsigned long long k = 0; k < o->buckets; ++k)
         o->start[k + 1] += o->start[k];
-    int *next = malloc((size_t)total * sizeof *next);
-    if (!next) {
-        occupied_free(o);
-        return amsph_fail("out of host memory for the cells of the particles placed (%lld cells)", total);
-    }
-    memcpy(next, o->start, (size_t)total * sizeof *next);
+    memcpy(next, o->start, (size_t)o->buckets * sizeof *next);
     for (int i = 0; i < n; ++i) {
         const double x[3] = {x_h[3 * i], x_h[3 * i + 1], x_h[3 * i + 2]};
-        const int slot = next[occupied_cell(o, x, cc)]++;
+        const int slot = next[bucket_of_point(o, x)]++;
         for (int d = 0; d < 3; ++d)
             o->x[3 * slot + d] = x_h[3 * i + d];
         o->index[slot] = i;
@@ -232,19 +254,15 @@ static int occupied_find(const occupied *o, const double x[3], double clearance,
 {
     const double reach2 = clearance * clearance * o->size * o->size;
     const int m = (int)ceil(clearance); /* cells of dx each side */
-    int cc[3] = {0, 0, 0};
+    long long cc[3];
     occupied_cell(o, x, cc);
     const int lo[3] = {-m, o->dim > 1 ? -m : 0, o->dim > 2 ? -m : 0};
     for (int k2 = lo[2]; k2 <= -lo[2]; ++k2)
         for (int k1 = lo[1]; k1 <= -lo[1]; ++k1)
             for (int k0 = -m; k0 <= m; ++k0) {
-                const int k[3] = {cc[0] + k0, cc[1] + k1, cc[2] + k2};
-                int cell = 0, inside = 1;
-                for (int d = o->dim - 1; d >= 0; --d) {
-                    inside &= k[d] >= 0 && k[d] < o->cells[d];
-                    cell = cell * o->cells[d] + k[d];
-                }
-                for (int j = inside ? o->start[cell] : 0; inside && j < o->start[cell + 1]; ++j) {
+                const long long k[3] = {cc[0] + k0, cc[1] + k1, cc[2] + k2};
+                const unsigned long long bucket = occupied_bucket(o, k);
+                for (int j = o->start[bucket]; j < o->start[bucket + 1]; ++j) {
                     const amsph_real *y = o->x + 3 * j;
                     double r2 = 0.0;
                     for (int d = 0; d < o->dim; ++d)
@@ -280,7 +298,11 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
                        const occupied *before, int first_grain, amsph_host_particles *h, long long *count)
 {
     const lattice l = block_lattice(g, c->dim, c->dx);
-    const long long points = (long long)l.count[0] * l.count[1] * l.count[2];
+    if (l.points > LATTICE_POINTS_MAX)
+        return amsph_bad_input("%s:%d: geometry block spans %.3g lattice points at dx = %g m (at most %.3g); "
+                               "make dx larger or the block smaller",
+                               c->path, g->line, l.points, c->dx, LATTICE_POINTS_MAX);
+    const long long points = (long long)l.points;
     const long long first = h ? h->n - *count : 0;
     long long found = 0;
     for (long long k = 0; k < points; ++k) {
@@ -293,8 +315,8 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
                 return overlap_error(c, g, x);
             continue;
         }
+        AMSPH_CHECK(check_inside_domain(c, g, x));
         if (h) {
-            AMSPH_CHECK(check_inside_domain(c, g, x));
             set_particle(c, g, x, first_grain + (bed ? amsph_powder_grain_at(bed, x) : 0), h,
                          (int)(first + found));
         }

@@ -69,6 +69,22 @@ expect_text("pressed.yaml:11: a grain particle at (0.375, 0.475, 0) m starts 0.4
 string(REPLACE "SECOND" "0.5" text "${pressed}")
 file(WRITE ${WORK}/apart.yaml "${text}")
 expect_status(0 ${AMSPH} check ${WORK}/apart.yaml)
+# A scene's size is checked before it is walked: two small blocks 50 m from
+# the origin at dx = 1 mm (2.5e9 cells of dx in the domain; the overlap test
+# used to bucket them all and crashed) build at once, and a block of 1.6e13
+# lattice points is refused instead of walked.
+set(far "dimension: 2\ndomain: {min: [0, 0], max: [50, 50]}\ndx: 1.0e-3\nend_time: 0.01
+output_interval: 0.01\nmaterials:\n  - {name: water, density: 1000}\ngeometry:
+  - {shape: box, kind: fluid, material: water, min: [49.9, 49.9], max: [49.91, 49.91]}
+  - {shape: box, kind: fluid, material: water, min: [49.95, 49.9], max: [49.96, 49.91]}\n")
+file(WRITE ${WORK}/far.yaml "${far}")
+expect_status(0 ${AMSPH} check ${WORK}/far.yaml)
+expect_text("2 geometry blocks, 200 particles)")
+string(REPLACE "SECOND" "" text "${overlap}")
+string(REPLACE "dx: 0.05" "dx: 1.0e-7" text "${text}")
+file(WRITE ${WORK}/too_fine.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/too_fine.yaml)
+expect_text("too_fine.yaml:9: geometry block spans 1.6e+13 lattice points at dx = 1e-07 m")
 expect_status(2 ${AMSPH} frobnicate)
 expect_text("unknown command")
 expect_status(0 ${AMSPH} --help)
