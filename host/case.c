@@ -11,6 +11,7 @@
  * refers to them by name. Rules that tie several keys together (max > min,
  * unique material names, ...) run after a map's keys are loaded. */
 #include "case.h"
+#include "real.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -894,7 +895,10 @@ static const yaml_node_t *list_item(const parser *p, const yaml_node_t *n, size_
 typedef enum { NUM_OK, NUM_BAD, NUM_HUGE } number_status;
 
 /* A whole scalar as a finite decimal number: 1, -2.5, 1e-3. Words such as
- * inf, nan or hex are not numbers. */
+ * inf, nan or hex are not numbers. Particle data are amsph_real (float
+ * unless built with AMSPH_DOUBLE), so a number is 0 or of a magnitude that
+ * it holds as a normal number (1.2e-38 to 3.4e38 for float): 1e39 would
+ * become inf on the particles, 1e-46 zero. */
 static number_status parse_number(const yaml_node_t *n, double *out)
 {
     if (n->type != YAML_SCALAR_NODE || n->data.scalar.length == 0)
@@ -907,7 +911,7 @@ static number_status parse_number(const yaml_node_t *n, double *out)
     double v = strtod(s, &end);
     if (end != s + len)
         return NUM_BAD;
-    if (!isfinite(v))
+    if (!(fabs(v) <= AMSPH_REAL_MAX) || (v != 0.0 && fabs(v) < AMSPH_REAL_MIN))
         return NUM_HUGE;
     *out = v;
     return NUM_OK;
@@ -998,7 +1002,8 @@ static int read_number(parser *p, const yaml_node_t *n, size_t line, const char 
     if (st == NUM_BAD)
         return fail(p, line, "'%s' must be a number, got %s", path, describe(n).s);
     if (st == NUM_HUGE)
-        return fail(p, line, "'%s' is out of range, got %s", path, describe(n).s);
+        return fail(p, line, "'%s' is out of range (0, or %g to %g in magnitude), got %s", path, AMSPH_REAL_MIN,
+                    AMSPH_REAL_MAX, describe(n).s);
     return 0;
 }
 
@@ -1900,6 +1905,24 @@ static const struct {
     {"seed", DISTRIBUTION_BIT(AMSPH_POWDER_LOGNORMAL) | DISTRIBUTION_BIT(AMSPH_POWDER_MIXED), 0},
 };
 
+/* A log-normal powder draws radii r0 exp(log_sd z), z standard normal,
+ * again until one falls within [grain_radius_min, grain_radius_max]
+ * (host/powder.c draw_radius): the fraction of draws it keeps,
+ * Phi(ln(max / r0) / log_sd) - Phi(ln(min / r0) / log_sd). Below
+ * LOGNORMAL_KEPT_MIN the bed would take a thousand draws a grain or more. */
+#define LOGNORMAL_KEPT_MIN 1e-3
+
+static double standard_normal_cdf(double z)
+{
+    return 0.5 * erfc(-z / sqrt(2.0));
+}
+
+static double lognormal_kept(const amsph_geometry *g)
+{
+    return standard_normal_cdf(log(g->grain_radius_max / g->grain_radius) / g->log_sd) -
+           standard_normal_cdf(log(g->grain_radius_min / g->grain_radius) / g->log_sd);
+}
+
 /* Each distribution's keys where they apply and nowhere else; radii in
  * order; a region that holds the largest grain. */
 static int finish_powder_bed(parser *p, const scope *sc)
@@ -1924,6 +1947,13 @@ static int finish_powder_bed(parser *p, const scope *sc)
                         "'%sgrain_radius_min' (%g m), 'grain_radius' (%g m) and 'grain_radius_max' "
                         "(%g m) must be in increasing order, min below max",
                         sc->prefix, g->grain_radius_min, g->grain_radius, g->grain_radius_max);
+        const double kept = lognormal_kept(g);
+        if (kept < LOGNORMAL_KEPT_MIN)
+            return fail(p, line_of(found(sc, "log_sd")),
+                        "'%slog_sd' (%g) leaves a fraction %.3g of the log-normal's draws within "
+                        "[grain_radius_min, grain_radius_max] (at least %g: the others are drawn again); "
+                        "make log_sd smaller or the range wider",
+                        sc->prefix, g->log_sd, kept, LOGNORMAL_KEPT_MIN);
         largest = g->grain_radius_max;
     }
     if (g->distribution == AMSPH_POWDER_MIXED && !(g->small_radius < g->grain_radius))

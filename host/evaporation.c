@@ -36,16 +36,12 @@ int amsph_evaporation_remove_hot(amsph_sim *s)
     if (count == 0.0)
         return 0;
     AMSPH_CHECK(amsph_reduce_sum(s->backend, s->work, n, &enthalpy));
-    /* The sort drops exactly the particles just marked (the others are in
-     * the domain since the last sort): the domain's count stays as it was. */
-    const long long left_domain = p->removed;
+    /* the sort drops the particles just marked, as not finite */
     AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
-    const long long dropped = p->removed - left_domain;
-    p->removed = left_domain;
-    if (dropped != (long long)llround(count))
-        return amsph_fail("step %lld: %lld particles evaporated but the sort dropped %lld", s->step,
-                          (long long)llround(count), dropped);
-    s->evaporated_particles += dropped;
+    if (s->grid.not_finite != (int)llround(count))
+        return amsph_fail("step %lld: %lld particles evaporated but the sort dropped %d", s->step,
+                          (long long)llround(count), s->grid.not_finite);
+    s->evaporated_particles += s->grid.not_finite;
     s->ledger.evaporated += enthalpy;
     return 0;
 }

@@ -26,7 +26,7 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
         const double cells = length / cell_size;
         if (periodic[d]) {
             if (length < 3.0 * support)
-                return amsph_fail("periodic axis %c: the domain length %g m is shorter than 3 "
+                return amsph_bad_input("periodic axis %c: the domain length %g m is shorter than 3 "
                                   "kernel supports (%g m); enlarge the domain or refine dx",
                                   axis_name[d], length, 3.0 * support);
             geo->ncell[d] = (int)floor(cells);
@@ -34,7 +34,7 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
             geo->ncell[d] = cells < 1.0 ? 1 : (int)ceil(cells);
         }
         if ((double)GRID_SETS * geo->total_cells * geo->ncell[d] > 2.0e9)
-            return amsph_fail("the grid would need more than 1e9 cells; shrink the domain");
+            return amsph_bad_input("the grid would need more than 1e9 cells; shrink the domain");
         geo->total_cells *= geo->ncell[d];
     }
     return 0;
@@ -47,7 +47,7 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
     g->dim = dim;
     g->capacity = capacity;
     AMSPH_CHECK(layout_cells(g, dim, lo, hi, periodic, support));
-    const size_t buckets = (size_t)grid_departed_bucket(&g->geometry) + 1;
+    const size_t buckets = (size_t)grid_not_finite_bucket(&g->geometry) + 1;
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->cell));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->order));
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
@@ -110,7 +110,7 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
     const int n = p->n;
     if (n > g->capacity)
         return amsph_fail("grid: %d particles exceed the grid's capacity of %d", n, g->capacity);
-    const int departed = grid_departed_bucket(&g->geometry), buckets = departed + 1;
+    const int departed = grid_departed_bucket(&g->geometry), buckets = grid_not_finite_bucket(&g->geometry) + 1;
     const amsph_arg geometry = amsph_arg_bytes(&g->geometry, sizeof g->geometry);
     /* the histogram in cell_start, scanned in place: no array of the buckets' size but
      * cell_start (at 1e6 particles of the 3D dam break, 8 million buckets, 36 bytes per
@@ -131,11 +131,13 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
             AMSPH_CHECK(reorder(g, b, &p->field[f], (int)(amsph_field_bytes((amsph_field_id)f) / 4), n));
     AMSPH_CHECK(reorder(g, b, &g->cell, 1, n));
 
-    int kept = 0;
-    AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)departed * sizeof(int), sizeof(int), &kept));
+    int ends[2]; /* of the particles kept and of those that left the domain */
+    AMSPH_CHECK(amsph_download(b, g->cell_start, (size_t)departed * sizeof(int), sizeof ends, ends));
+    const int kept = ends[0];
+    g->not_finite = n - ends[1];
     AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_cells_of_buckets", kept, amsph_arg_buffer(g->cell), amsph_arg_int(kept),
                              geometry));
-    p->removed += n - kept;
+    p->removed += ends[1] - kept;
     p->n = kept;
     return 0;
 }

@@ -16,7 +16,7 @@ typedef struct {
     int dim;
     int capacity;               /* particles the grid buffers hold */
     amsph_buffer *cell;         /* cell of each particle, in sorted order after a sort */
-    amsph_buffer *cell_start;   /* GRID_SETS total_cells + 2 ints: first particle of each bucket
+    amsph_buffer *cell_start;   /* GRID_SETS total_cells + 3 ints: first particle of each bucket
                                    (kernels/grid_geometry.h) */
     amsph_buffer *rank;         /* each particle's slot within its bucket (kernels/grid.cl
                                    grid_bin) */
@@ -26,6 +26,7 @@ typedef struct {
     unsigned recomputed;        /* fields (bit per amsph_field_id) that the step recomputes for
                                    every particle after the sort before any kernel reads them:
                                    left unordered */
+    int not_finite;             /* particles of the last sort whose position was not finite */
 } amsph_grid;
 
 /* Lays cells of side support / GRID_CELLS_PER_SUPPORT (a periodic axis's
@@ -35,7 +36,10 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
                     const double hi[3], const int periodic[3], double support, int capacity);
 /* Bins and sorts the particles, reorders every present field but those of
  * g->recomputed, and drops the particles that left the domain (p->n
- * shrinks, p->removed grows). */
+ * shrinks, p->removed grows) and those whose position is not finite
+ * (g->not_finite of them: evaporation marks the particles it removes so;
+ * after a step's move they are a state that blew up, which no guard after
+ * the sort could see). */
 int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
 
 /* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl; in and

@@ -32,22 +32,23 @@ static int first_with_code(amsph_sim *s, int code, int *index)
 
 static int report(amsph_sim *s, int code, int i)
 {
-    amsph_real x[3], rho, rho0, nearest;
+    amsph_real x[3];
     unsigned id;
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_POSITION, i, x));
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_DENSITY, i, &rho));
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_REFERENCE_DENSITY, i, &rho0));
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_ID, i, &id));
-    AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof nearest, sizeof nearest, &nearest));
-    const amsph_fluid_settings *f = &s->config.fluid;
-    const double dx = s->config.dx;
     char where[160];
     snprintf(where, sizeof where, "step %lld, t = %.6g s: particle id %u at (%.6g, %.6g, %.6g) m", s->step,
              s->time, id, (double)x[0], (double)x[1], (double)x[2]);
     if (code == GUARD_NOT_FINITE)
-        return amsph_fail("guard 'finite values' failed: %s has a non-finite position, velocity "
-                          "or density; reduce cfl or check the case's forces",
+        return amsph_fail("guard 'finite values' failed: %s has a non-finite position, velocity, density "
+                          "or temperature; reduce cfl or check the case's forces and material values",
                           where);
+    amsph_real rho, rho0, nearest;
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_DENSITY, i, &rho));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_REFERENCE_DENSITY, i, &rho0));
+    AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof nearest, sizeof nearest, &nearest));
+    const amsph_fluid_settings *f = &s->config.fluid;
+    const double dx = s->config.dx;
     if (code == GUARD_CLOSE)
         return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest "
                           "neighbour (limit %.3g dx)",
@@ -62,18 +63,21 @@ int amsph_guards_check(amsph_sim *s)
 {
     amsph_particles *p = &s->particles;
     const amsph_fluid_settings *f = &s->config.fluid;
+    amsph_buffer *density = p->field[AMSPH_FIELD_DENSITY], *temperature = p->field[AMSPH_FIELD_TEMPERATURE];
+    /* fields a kernel does not read stand in for those that are absent */
+    amsph_buffer *reference = f->enabled ? p->field[AMSPH_FIELD_REFERENCE_DENSITY] : density;
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "guard_check", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_POSITION]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_REFERENCE_DENSITY]),
-                             amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_buffer(s->closest),
-                             amsph_arg_int(p->n), amsph_arg_real(f->min_pair_distance * s->config.dx),
+                             amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY]), amsph_arg_buffer(density),
+                             amsph_arg_buffer(reference), amsph_arg_buffer(temperature ? temperature : density),
+                             amsph_arg_int(temperature != NULL), amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                             amsph_arg_buffer(s->closest), amsph_arg_int(p->n), amsph_arg_int(f->enabled),
+                             amsph_arg_real(f->min_pair_distance * s->config.dx),
                              amsph_arg_real(f->max_density_error), amsph_arg_int(f->clamp_negative_pressure),
                              amsph_arg_buffer(s->work)));
     double worst = 0.0;
     AMSPH_CHECK(amsph_reduce_max(s->backend, s->work, p->n, &worst));
     if (worst == GUARD_OK)
-        return amsph_fluid_check_smoothing_length(s);
+        return f->enabled ? amsph_fluid_check_smoothing_length(s) : 0;
     int i = 0;
     AMSPH_CHECK(first_with_code(s, (int)worst, &i));
     return report(s, (int)worst, i);

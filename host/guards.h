@@ -1,6 +1,6 @@
-/* Run guards (fluid module): non-finite values, particle pairs closer than
- * a fraction of dx, density error out of bounds, a smoothing length past
- * the grid's h_max (host/fluid.c). */
+/* Run guards: non-finite values (every run), and with the fluid module
+ * particle pairs closer than a fraction of dx, density error out of
+ * bounds, a smoothing length past the grid's h_max (host/fluid.c). */
 #ifndef AMSPH_GUARDS_H
 #define AMSPH_GUARDS_H
 

@@ -76,7 +76,7 @@ static int lay_out_bins(amsph_sim *s)
     laser_params *p = &s->laser.params;
     const double reach = sqrt((double)c->dim) * l->bin_size;
     if (reach > s->support)
-        return amsph_fail("laser.bin_size %g m is too large: a bin node gathers its particles from "
+        return amsph_bad_input("laser.bin_size %g m is too large: a bin node gathers its particles from "
                           "the grid cells around it, which needs bin_size * sqrt(%d) <= the kernel "
                           "support %g m; use bin_size <= %g m",
                           l->bin_size, c->dim, s->support, s->support / sqrt((double)c->dim));
@@ -87,7 +87,7 @@ static int lay_out_bins(amsph_sim *s)
     const double depth = ceil(extent / l->bin_size) + 1.0;
     const double columns = pow(2.0 * half + 1.0, c->dim - 1);
     if (columns * depth > MAX_BIN_NODES)
-        return amsph_fail("the laser bin grid would have %.3g nodes (at most %g): raise "
+        return amsph_bad_input("the laser bin grid would have %.3g nodes (at most %g): raise "
                           "laser.bin_size or lower laser.window",
                           columns * depth, (double)MAX_BIN_NODES);
     p->lateral_nodes = 2 * (int)half + 1;

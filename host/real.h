@@ -1,9 +1,16 @@
 /* The host's name for the kernels' `real` (float unless built with AMSPH_DOUBLE). */
 #ifndef AMSPH_REAL_H
 #define AMSPH_REAL_H
+#include <float.h>
+/* AMSPH_REAL_MAX and AMSPH_REAL_MIN: the largest finite and the smallest
+ * normal magnitude it holds. */
 #if AMSPH_DOUBLE
 typedef double amsph_real;
+#define AMSPH_REAL_MAX DBL_MAX
+#define AMSPH_REAL_MIN DBL_MIN
 #else
 typedef float amsph_real;
+#define AMSPH_REAL_MAX FLT_MAX
+#define AMSPH_REAL_MIN FLT_MIN
 #endif
 #endif

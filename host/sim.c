@@ -140,6 +140,19 @@ static int update_temperature(amsph_sim *s, double dt)
     return 0;
 }
 
+/* The sort after a step's move: a position that is not finite there is a
+ * state that blew up. */
+static int sort_moved(amsph_sim *s)
+{
+    AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
+    if (s->grid.not_finite)
+        return amsph_fail("guard 'finite values' failed: step %lld, t = %.6g s: %d particles have a position "
+                          "that is not finite (NaN or inf); reduce cfl or check the case's forces and "
+                          "material values",
+                          s->step + 1, s->time, s->grid.not_finite);
+    return 0;
+}
+
 static int keep_last_good(amsph_sim *s)
 {
     s->last_good_time = s->time;
@@ -440,7 +453,7 @@ static int leapfrog_advance(amsph_sim *s, double dt)
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
     if (s->config.thermal.enabled)
         AMSPH_CHECK(amsph_thermal_book_departures(s));
-    AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
+    AMSPH_CHECK(sort_moved(s));
     AMSPH_CHECK(update_temperature(s, dt));
     AMSPH_CHECK(compute_rates(s, dt));
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, NULL));
@@ -472,7 +485,7 @@ static int verlet_advance(amsph_sim *s, double dt)
                              amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY]),
                              amsph_arg_buffer(p->field[AMSPH_FIELD_DENSITY_PREVIOUS])));
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_SORT, NULL));
-    AMSPH_CHECK(amsph_grid_sort(&s->grid, p));
+    AMSPH_CHECK(sort_moved(s));
     return compute_rates(s, dt);
 }
 
@@ -480,18 +493,20 @@ int amsph_sim_step(amsph_sim *s, double dt)
 {
     amsph_phase outside;
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
-    AMSPH_CHECK(s->fluid.one_pass ? verlet_advance(s, dt) : leapfrog_advance(s, dt));
+    const int status = s->fluid.one_pass ? verlet_advance(s, dt) : leapfrog_advance(s, dt);
+    if (status) {
+        s->guard_failed = s->grid.not_finite > 0; /* the run writes the last good state */
+        return status;
+    }
     s->time += dt;
     s->dt = dt;
     ++s->step;
-    if (s->config.fluid.enabled) {
-        AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_GUARDS, NULL));
-        if (amsph_guards_check(s)) {
-            s->guard_failed = 1;
-            return 1;
-        }
-        if (s->step % LAST_GOOD_INTERVAL == 0)
-            AMSPH_CHECK(keep_last_good(s));
+    AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_GUARDS, NULL));
+    if (amsph_guards_check(s)) {
+        s->guard_failed = 1;
+        return 1;
     }
+    if (s->step % LAST_GOOD_INTERVAL == 0)
+        AMSPH_CHECK(keep_last_good(s));
     return amsph_sim_phase(s, outside, NULL);
 }

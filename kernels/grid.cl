@@ -6,9 +6,9 @@
  *   grid_order_cells  within a cell, slots ordered by global id (deterministic)
  *   gather_words    reorder a field by the permutation
  *   grid_cells_of_buckets  the sorted buckets back to cells
- * Cells are numbered x fastest; the last bucket collects particles that left
- * the domain (or whose position is not finite): they sort to the end and the
- * host drops them. */
+ * Cells are numbered x fastest; the two last buckets collect particles that
+ * left the domain and those whose position is not finite: they sort to the
+ * end and the host drops them, counting each kind. */
 #include "device.h"
 #include "kinds.h"
 #include "neighbours.h"
@@ -59,8 +59,10 @@ KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_
     {
         int index = 0;
         int stride = 1;
+        int finite = 1;
         for (int d = 0; d < AMSPH_DIM; ++d) {
             real x = position[3 * i + d];
+            finite = finite && isfinite(x);
             if (g.periodic[d]) {
                 const real hi = g.lo[d] + g.length[d];
                 if (x < g.lo[d])
@@ -74,7 +76,9 @@ KERNEL void grid_bin(GLOBAL real *position, GLOBAL const int *kind, int n, grid_
             stride *= g.ncell[d];
         }
         const int set = kind[i] == KIND_WALL ? GRID_SET_WALLS : GRID_SET_BODIES;
-        const int bucket = index < 0 ? grid_departed_bucket(&g) : grid_bucket(&g, index, set);
+        const int bucket = !finite    ? grid_not_finite_bucket(&g)
+                           : index < 0 ? grid_departed_bucket(&g)
+                                       : grid_bucket(&g, index, set);
         bucket_of[i] = bucket;
         rank[i] = ATOMIC_INC(&count[bucket]);
     }

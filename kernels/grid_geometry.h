@@ -8,7 +8,8 @@
  * that move or change kind), then the walls, which never change kind. The
  * buckets go row by row, and within a row set by set, cell by cell along
  * x: bucket (2 row + set) ncell[0] + x. Bucket 2 total_cells collects the
- * particles that left the domain. A loop that needs only non-wall
+ * particles that left the domain, the last bucket after it those whose
+ * position is not finite (host/grid.h amsph_grid_sort). A loop that needs only non-wall
  * neighbours (the walls' state from the fluid) then reads no wall at all,
  * and a wall far from any fluid costs nothing there; the rows keep both
  * sets of a neighbourhood close in memory, and a contiguous range of
@@ -42,8 +43,8 @@ typedef struct {
 #define GRID_SETS 2
 
 /* The bucket of cell `cell`'s particles of set `set` (its row's in that
- * set from `row_bucket`), the cell of a bucket, and the bucket of the
- * particles that left the domain. */
+ * set from `row_bucket`), the cell of a bucket, the bucket of the
+ * particles that left the domain and of those whose position is not finite. */
 static inline int grid_row_bucket(const grid_geometry *g, int row_cell, int set)
 {
     return GRID_SETS * row_cell + set * g->ncell[0]; /* row_cell: the row's cell at x = 0 */
@@ -61,6 +62,10 @@ static inline int grid_cell_of_bucket(const grid_geometry *g, int bucket)
 static inline int grid_departed_bucket(const grid_geometry *g)
 {
     return GRID_SETS * g->total_cells;
+}
+static inline int grid_not_finite_bucket(const grid_geometry *g)
+{
+    return grid_departed_bucket(g) + 1;
 }
 
 #endif

@@ -5,7 +5,10 @@
  *                   expanded particle then has no pressure and pushes nothing
  *                   (spray torn off a droplet keeps the density it left with)
  *   GUARD_CLOSE     nearest neighbour closer than the bound (fluid)
- *   GUARD_NOT_FINITE position, velocity or density not finite (any kind) */
+ *   GUARD_NOT_FINITE position, velocity, density or (with_temperature)
+ *                   temperature not finite (any kind)
+ * Without the fluid module (fluid = 0) only the last is checked, and
+ * reference_density and closest are not read. */
 #include "device.h"
 #include "kinds.h"
 
@@ -16,18 +19,19 @@
 
 KERNEL void guard_check(GLOBAL const real *position, GLOBAL const real *velocity,
                         GLOBAL const real *density, GLOBAL const real *reference_density,
-                        GLOBAL const int *kind, GLOBAL const real *closest, int n, real min_distance,
+                        GLOBAL const real *temperature, int with_temperature, GLOBAL const int *kind,
+                        GLOBAL const real *closest, int n, int fluid, real min_distance,
                         real max_density_error, int clamped, GLOBAL real *code)
 {
     FOR_EACH_ITEM(a, n)
     {
-        int finite = isfinite(density[a]);
+        int finite = isfinite(density[a]) && (!with_temperature || isfinite(temperature[a]));
         for (int d = 0; d < 3; ++d)
             finite = finite && isfinite(position[3 * a + d]) && isfinite(velocity[3 * a + d]);
         int result = GUARD_OK;
         if (!finite) {
             result = GUARD_NOT_FINITE;
-        } else if (kind[a] == KIND_FLUID) {
+        } else if (fluid && kind[a] == KIND_FLUID) {
             const real rho0 = reference_density[a];
             if (closest[a] < min_distance)
                 result = GUARD_CLOSE;

@@ -85,6 +85,33 @@ string(REPLACE "dx: 0.05" "dx: 1.0e-7" text "${text}")
 file(WRITE ${WORK}/too_fine.yaml "${text}")
 expect_status(2 ${AMSPH} check ${WORK}/too_fine.yaml)
 expect_text("too_fine.yaml:9: geometry block spans 1.6e+13 lattice points at dx = 1e-07 m")
+# A state that blows up stops the run with the last good state written, in
+# every module: positions that are not finite (sound speed 1e25: c0^2
+# overflows the float pressure) used to sort out of the domain as "left the
+# domain" with exit 0, and a thermal-only run whose laser overflows the
+# enthalpy (1e30 W) ran on with a temperature of NaN.
+set(blowup "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05\nend_time: 0.01
+output_interval: 0.005\nfluid: {}\nmaterials:\n  - {name: water, density: 1000, sound_speed: 1e25}
+geometry:\n  - {shape: box, kind: fluid, material: water, min: [0.1, 0.1], max: [0.5, 0.5]}\n")
+file(WRITE ${WORK}/blowup.yaml "${blowup}")
+expect_status(1 ${AMSPH} run ${WORK}/blowup.yaml -o ${WORK}/blowup --force --quiet)
+expect_text("guard 'finite values' failed: step 1, t = 0 s: 64 particles have a position that is not finite")
+expect_text("the last good state (step 0, t = 0 s) is")
+set(hot "dimension: 2\ndomain: {min: [-1.0e-4, -1.0e-4], max: [1.1e-3, 6.0e-4]}\ndx: 4.0e-5
+end_time: 1.0e-4\noutput_interval: 5.0e-5\nthermal: {}\nmaterials:
+  - {name: steel, density: 7000, specific_heat: 700, conductivity: 30}\ngeometry:
+  - {shape: box, kind: solid, material: steel, min: [0, 0], max: [1.0e-3, 4.0e-4], temperature: 300}
+laser: {power: 1e30, radius: 1.0e-4, absorption: surface, absorptivity: 0.5, start: [5.0e-4, 4.0e-4]}\n")
+file(WRITE ${WORK}/overheated.yaml "${hot}")
+expect_status(1 ${AMSPH} run ${WORK}/overheated.yaml -o ${WORK}/overheated --force --quiet)
+expect_text("guard 'finite values' failed: step 1, t = ")
+# What the run finds wrong with the case when it lays out its grids is bad
+# input (exit 2), as the parser's findings are.
+file(READ ${SOURCE}/cases/validation/laser_slab_2d.yaml text)
+string(REPLACE "  power: 100" "  power: 100\n  bin_size: 1.0e-3" text "${text}")
+file(WRITE ${WORK}/coarse_bins.yaml "${text}")
+expect_status(2 ${AMSPH} run ${WORK}/coarse_bins.yaml -o ${WORK}/coarse_bins --force --quiet)
+expect_text("laser.bin_size 0.001 m is too large")
 expect_status(2 ${AMSPH} frobnicate)
 expect_text("unknown command")
 expect_status(0 ${AMSPH} --help)

@@ -17,6 +17,12 @@
 #include <string.h>
 
 #define NAME "case.yaml"
+/* the magnitudes a number may take besides 0 (host/case.c parse_number) */
+#if AMSPH_DOUBLE
+#define REAL_RANGE "2.22507e-308 to 1.79769e+308 in magnitude"
+#else
+#define REAL_RANGE "1.17549e-38 to 3.40282e+38 in magnitude"
+#endif
 
 static int passed, failed;
 static amsph_case parsed; /* large; kept out of the stack */
@@ -147,7 +153,12 @@ static const bad_case bad_cases[] = {
     {"number is .nan", DOMAIN2 "dx: 1\nend_time: .nan\n",
      NAME ":6: 'end_time' must be a number, got '.nan'"},
     {"number is hex", DOMAIN2 "dx: 0x10\n", NAME ":5: 'dx' must be a number, got '0x10'"},
-    {"number overflows", DOMAIN2 "dx: 1e999\n", NAME ":5: 'dx' is out of range, got '1e999'"},
+    {"number overflows", DOMAIN2 "dx: 1e999\n", NAME ":5: 'dx' is out of range (0, or " REAL_RANGE "), got '1e999'"},
+    /* the particles' float would hold 1e39 as inf and 1e-46 as 0 */
+    {"number beyond the particles' real", DOMAIN2 "dx: 1e39\n",
+     NAME ":5: 'dx' is out of range (0, or " REAL_RANGE "), got '1e39'"},
+    {"number below the particles' real", "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1, -1e-46]\n",
+     NAME ":4: 'domain.max[1]' is out of range (0, or " REAL_RANGE "), got '-1e-46'"},
     {"number is empty", DOMAIN2 "dx:\n", NAME ":5: 'dx' must be a number, got an empty value"},
     {"number is a list", DOMAIN2 "dx: [1]\n", NAME ":5: 'dx' must be a number, got a list"},
     {"integer is a float", "dimension: 2.5\n",
@@ -409,6 +420,13 @@ static const bad_case bad_cases[] = {
                     "    grain_radius_min: 0.06\n    grain_radius_max: 0.08\n",
      NAME ":21: 'geometry[0].grain_radius_min' (0.06 m), 'grain_radius' (0.05 m) and "
           "'grain_radius_max' (0.08 m) must be in increasing order, min below max"},
+    /* 1.6e-9 of the draws within the range: the deposit would redraw without end */
+    {"powder bed log-normal too wide for its range",
+     HEAD2 MATS BED "    distribution: lognormal\n    grain_radius: 0.05\n    log_sd: 1e8\n"
+                    "    grain_radius_min: 0.04\n    grain_radius_max: 0.06\n",
+     NAME ":19: 'geometry[0].log_sd' (1e+08) leaves a fraction 1.62e-09 of the log-normal's draws within "
+          "[grain_radius_min, grain_radius_max] (at least 0.001: the others are drawn again); make log_sd "
+          "smaller or the range wider"},
     {"powder bed mixed without small radius",
      HEAD2 MATS BED "    distribution: mixed\n    grain_radius: 0.05\n",
      NAME ":12: missing required key 'small_radius' in geometry[0] (distribution 'mixed')"},
