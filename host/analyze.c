@@ -220,19 +220,22 @@ static int read_snapshot_file(hid_t file, const char *path, amsph_host_particles
     return 0;
 }
 
-/* Snapshot k of outdir into h (freed by the caller); 1 when there is none. */
-static int read_snapshot(const char *outdir, int k, amsph_host_particles *h, int *dim, double *dx, double *time)
+/* The path of snapshot k of outdir. */
+static int snapshot_path(const char *outdir, int k, char *path, size_t size)
 {
-    char path[1100];
-    if (snprintf(path, sizeof path, "%s/snap_%06d.h5", outdir, k) >= (int)sizeof path)
+    if (snprintf(path, size, "%s/snap_%06d.h5", outdir, k) >= (int)size)
         return amsph_bad_input("path too long: %s", outdir);
-    if (access(path, F_OK) != 0)
-        return 1;
+    return 0;
+}
+
+/* The snapshot at path into h, which the caller frees whatever the status. */
+static int read_snapshot(const char *path, amsph_host_particles *h, int *dim, double *dx, double *time)
+{
+    memset(h, 0, sizeof *h);
     amsph_h5_quiet();
     hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file < 0)
         return amsph_bad_input("%s is not a readable HDF5 snapshot", path);
-    memset(h, 0, sizeof *h);
     const int status = read_snapshot_file(file, path, h, dim, dx, time);
     H5Fclose(file);
     return status;
@@ -309,14 +312,14 @@ static int check_axes(const amsph_analysis_axes *axes, int dim)
 static int analyze_snapshots(const char *outdir, const amsph_analysis_axes *axes, FILE *out)
 {
     amsph_analysis_state a = {.axes = *axes, .previous_time = NAN, .previous_liquid_mass = NAN};
-    int status = 0, k = 0;
-    for (;; ++k) {
-        amsph_host_particles h;
-        status = read_snapshot(outdir, k, &h, &a.dim, &a.dx, &a.time);
-        if (status == 1) { /* no snapshot k: the end */
-            status = 0;
+    int status = 0;
+    for (int k = 0;; ++k) {
+        char path[1100];
+        status = snapshot_path(outdir, k, path, sizeof path);
+        if (status || access(path, F_OK) != 0) /* no snapshot k: the end */
             break;
-        }
+        amsph_host_particles h;
+        status = read_snapshot(path, &h, &a.dim, &a.dx, &a.time);
         a.particles = &h;
         if (!status && k == 0) {
             if (a.axes.up < 0)
@@ -344,7 +347,7 @@ static int analyze_snapshots(const char *outdir, const amsph_analysis_axes *axes
 int amsph_analyze(const char *outdir, const amsph_analysis_axes *axes, const char *csv_path)
 {
     char first[1100];
-    snprintf(first, sizeof first, "%s/snap_000000.h5", outdir);
+    AMSPH_CHECK(snapshot_path(outdir, 0, first, sizeof first));
     if (access(first, F_OK) != 0)
         return amsph_bad_input("%s holds no snapshot (snap_000000.h5)", outdir);
     FILE *out = fopen(csv_path, "w");

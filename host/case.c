@@ -275,6 +275,7 @@ static const key_spec specs[] = {
      .doc = "Simulated time at which the run stops"},
     {.section = SEC_TOP, .key = "output_interval", .type = VT_NUMBER, .unit = "s",
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = CASE(output_interval),
+     .rule = "at most 1e7 outputs (`end_time` / `output_interval`)",
      .doc = "Simulated time between snapshots"},
     {.section = SEC_TOP, .key = "backend", .type = VT_CHOICE, .choices = backend_choices,
      .def = AMSPH_BACKEND_OPENMP, .offset = CASE(backend),
@@ -1367,6 +1368,25 @@ static const char *suggest_key(section_id section, const yaml_node_t *key)
     return best;
 }
 
+/* The keys of a section, ", " between them, in a string the caller frees
+ * (NULL when out of memory). */
+static char *section_keys(section_id section)
+{
+    size_t size = 1;
+    for (size_t i = 0; i < N_SPECS; i++)
+        if (specs[i].section == section)
+            size += strlen(specs[i].key) + 2;
+    char *keys = malloc(size);
+    if (!keys)
+        return NULL;
+    keys[0] = '\0';
+    size_t used = 0;
+    for (size_t i = 0; i < N_SPECS; i++)
+        if (specs[i].section == section)
+            used += (size_t)snprintf(keys + used, size - used, "%s%s", used ? ", " : "", specs[i].key);
+    return keys;
+}
+
 static int unknown_key(parser *p, const scope *sc, const yaml_node_t *key)
 {
     const char *hint = suggest_key(sc->section, key);
@@ -1374,16 +1394,11 @@ static int unknown_key(parser *p, const scope *sc, const yaml_node_t *key)
     if (hint)
         return fail(p, line_of(key), "unknown key %s in %s; did you mean '%s'?", name.s, sc->label,
                     hint);
-    char allowed[512] = ""; /* the fluid section's keys take 300 characters */
-    size_t used = 0;
-    for (size_t i = 0; i < N_SPECS && used < sizeof allowed; i++) {
-        if (specs[i].section != sc->section)
-            continue;
-        int n =
-            snprintf(allowed + used, sizeof allowed - used, "%s%s", used ? ", " : "", specs[i].key);
-        used += n > 0 ? (size_t)n : 0;
-    }
-    return fail(p, line_of(key), "unknown key %s in %s (allowed: %s)", name.s, sc->label, allowed);
+    char *allowed = section_keys(sc->section);
+    fail(p, line_of(key), "unknown key %s in %s (allowed: %s)", name.s, sc->label,
+         allowed ? allowed : "out of memory listing them");
+    free(allowed);
+    return CASE_ERROR;
 }
 
 /* First pass: the value node of each key, by spec index. */
@@ -1848,10 +1863,28 @@ static int check_verlet(parser *p)
                  : 0;
 }
 
-/* The fluid module's equation of state needs a speed of sound. */
-static int finish_top(parser *p)
+/* At most this many outputs to the end time: more is a mistake of units (a
+ * snapshot of every particle at each), and their numbering and the progress
+ * estimate would overflow. */
+#define MAX_OUTPUTS 1e7
+
+static int check_output_count(parser *p, const scope *sc)
 {
-    if (finish_grains(p) || check_gas(p) || check_contact_angles(p) || check_verlet(p))
+    const amsph_case *c = p->c;
+    const double outputs = c->end_time / c->output_interval;
+    if (!(outputs <= MAX_OUTPUTS))
+        return fail(p, line_of(found(sc, "output_interval")),
+                    "'output_interval' (%g s) gives %g outputs up to 'end_time' (%g s); at most %g "
+                    "are allowed",
+                    c->output_interval, outputs, c->end_time, MAX_OUTPUTS);
+    return 0;
+}
+
+/* The fluid module's equation of state needs a speed of sound. */
+static int finish_top(parser *p, const scope *sc)
+{
+    if (check_output_count(p, sc) || finish_grains(p) || check_gas(p) || check_contact_angles(p) ||
+        check_verlet(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
@@ -2095,7 +2128,7 @@ static int finish_scope(parser *p, const scope *sc)
     case SEC_GEOMETRY:
         return finish_geometry(p, sc);
     case SEC_TOP:
-        return finish_top(p);
+        return finish_top(p, sc);
     }
     return 0;
 }

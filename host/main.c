@@ -2,6 +2,7 @@
  * input (command line, case file or restart file), 128 + the signal number
  * for a run stopped by SIGINT or SIGTERM (after its checkpoint). */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -84,12 +85,19 @@ static int bad_usage(const char *message, const char *value)
     return EXIT_BAD_INPUT;
 }
 
-static int parse_int_option(const char *text, long long min, long long *out)
+/* The value text of option `name` (NULL: missing) as an integer in [min,
+ * max] into out; else bad usage that says what it takes (what: "a count"). */
+static int parse_int_option(const char *name, const char *text, const char *what, long long min, long long max,
+                            long long *out)
 {
     char *end = NULL;
-    const long long v = strtoll(text, &end, 10);
-    if (!end || *end || end == text || v < min)
-        return 1;
+    errno = 0;
+    const long long v = text ? strtoll(text, &end, 10) : 0;
+    if (!text || *end || end == text || errno == ERANGE || v < min || v > max) {
+        char message[160];
+        snprintf(message, sizeof message, "%s takes %s from %lld to %lld", name, what, min, max);
+        return bad_usage(message, text);
+    }
     *out = v;
     return 0;
 }
@@ -128,33 +136,33 @@ static int parse_options(int argc, char **argv, cli_options *o)
     for (int i = 0; i < argc; ++i) {
         const char *a = argv[i];
         const int has_value = i + 1 < argc;
+        const char *value = has_value ? argv[i + 1] : NULL;
         long long v = 0;
         if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!has_value)
+            if (!has_value || !*value)
                 return bad_usage("-o needs a directory", NULL);
             o->outdir = argv[++i];
         } else if (!strcmp(a, "--backend")) {
-            if (!has_value || (strcmp(argv[i + 1], "openmp") && strcmp(argv[i + 1], "opencl")))
-                return bad_usage("--backend takes openmp or opencl", has_value ? argv[i + 1] : NULL);
+            if (!has_value || (strcmp(value, "openmp") && strcmp(value, "opencl")))
+                return bad_usage("--backend takes openmp or opencl", value);
             o->backend = argv[++i];
         } else if (!strcmp(a, "--device")) {
-            if (!has_value || parse_int_option(argv[i + 1], 0, &v))
-                return bad_usage("--device takes a device index >= 0", has_value ? argv[i + 1] : NULL);
+            if (parse_int_option(a, value, "a device index", 0, INT_MAX, &v))
+                return EXIT_BAD_INPUT;
             o->device = (int)v;
             ++i;
         } else if (!strcmp(a, "--particles")) {
-            if (!has_value || parse_count_option(argv[i + 1], &v))
-                return bad_usage("--particles takes a count from 1 to 2e9", has_value ? argv[i + 1] : NULL);
+            if (!has_value || parse_count_option(value, &v))
+                return bad_usage("--particles takes a count from 1 to 2e9", value);
             if (o->n_particles == AMSPH_BENCH_MAX_COUNTS)
                 return bad_usage("--particles is given more than 32 times", NULL);
             o->particles[o->n_particles++] = v;
             ++i;
         } else if (!strcmp(a, "--steps") || !strcmp(a, "--warmup")) {
-            if (!has_value || parse_int_option(argv[i + 1], !strcmp(a, "--steps"), &v) || v > 1000000)
-                return bad_usage(!strcmp(a, "--steps") ? "--steps takes a count from 1 to 1e6"
-                                                       : "--warmup takes a count from 0 to 1e6",
-                                 has_value ? argv[i + 1] : NULL);
-            *(!strcmp(a, "--steps") ? &o->steps : &o->warmup) = (int)v;
+            const int steps = !strcmp(a, "--steps");
+            if (parse_int_option(a, value, "a count", steps ? 1 : 0, 1000000, &v))
+                return EXIT_BAD_INPUT;
+            *(steps ? &o->steps : &o->warmup) = (int)v;
             ++i;
         } else if (!strcmp(a, "--csv")) {
             if (!has_value)
@@ -165,39 +173,38 @@ static int parse_options(int argc, char **argv, cli_options *o)
                 return bad_usage("--plot needs a PNG file", NULL);
             o->plot = argv[++i];
         } else if (!strcmp(a, "--scan") || !strcmp(a, "--up")) {
-            const int axis = has_value ? parse_axis(argv[i + 1]) : -1;
+            const int axis = has_value ? parse_axis(value) : -1;
             if (axis < 0)
                 return bad_usage(!strcmp(a, "--scan") ? "--scan takes x, y or z" : "--up takes x, y or z",
-                                 has_value ? argv[i + 1] : NULL);
+                                 value);
             *(!strcmp(a, "--scan") ? &o->axes.scan : &o->axes.up) = axis;
             ++i;
         } else if (!strcmp(a, "--track-at") || !strcmp(a, "--surface")) {
-            double *value = !strcmp(a, "--track-at") ? &o->axes.track_at : &o->axes.surface;
+            double *coordinate = !strcmp(a, "--track-at") ? &o->axes.track_at : &o->axes.surface;
             char *end = NULL;
-            *value = has_value ? strtod(argv[i + 1], &end) : NAN;
-            if (!has_value || !end || *end || end == argv[i + 1] || !isfinite(*value))
+            *coordinate = has_value ? strtod(value, &end) : NAN;
+            if (!has_value || !end || *end || end == value || !isfinite(*coordinate))
                 return bad_usage(!strcmp(a, "--track-at") ? "--track-at takes a coordinate in m"
                                                           : "--surface takes a coordinate in m",
-                                 has_value ? argv[i + 1] : NULL);
+                                 value);
             ++i;
         } else if (!strcmp(a, "--metrics")) {
             o->metrics = 1;
         } else if (!strcmp(a, "--quick")) {
             o->quick = 1;
         } else if (!strcmp(a, "--repeat")) {
-            if (!has_value || parse_int_option(argv[i + 1], 1, &v) || v > 100000)
-                return bad_usage("--repeat takes a count from 1 to 100000", has_value ? argv[i + 1] : NULL);
+            if (parse_int_option(a, value, "a count", 1, 100000, &v))
+                return EXIT_BAD_INPUT;
             o->repeat = (int)v;
             ++i;
         } else if (!strcmp(a, "--max-steps")) {
-            if (!has_value || parse_int_option(argv[i + 1], 1, &v))
-                return bad_usage("--max-steps takes a step count >= 1", has_value ? argv[i + 1] : NULL);
+            if (parse_int_option(a, value, "a step count", 1, LLONG_MAX, &v))
+                return EXIT_BAD_INPUT;
             o->max_steps = v;
             ++i;
         } else if (!strcmp(a, "--checkpoint-interval")) {
-            if (!has_value || parse_seconds_option(argv[i + 1], &o->checkpoint_interval))
-                return bad_usage("--checkpoint-interval takes wall seconds >= 0 (0: none)",
-                                 has_value ? argv[i + 1] : NULL);
+            if (!has_value || parse_seconds_option(value, &o->checkpoint_interval))
+                return bad_usage("--checkpoint-interval takes wall seconds >= 0 (0: none)", value);
             ++i;
         } else if (!strcmp(a, "--restart")) {
             if (!has_value)
@@ -222,7 +229,7 @@ static int load_case(const char *path, amsph_case *c)
 {
     if (!path)
         return bad_usage("a case file is needed", NULL);
-    char error[1024];
+    char error[4096]; /* room for the longest list of allowed keys */
     if (amsph_case_load(path, c, error, sizeof error)) {
         fprintf(stderr, "%s\n", error);
         return EXIT_BAD_INPUT;
@@ -487,7 +494,7 @@ static int command_analyze(const cli_options *o, const char *self)
     if (!o->case_path)
         return bad_usage("analyze needs an output directory", NULL);
     char csv[1100];
-    if (!o->csv && snprintf(csv, sizeof csv, "%s/melt_pool.csv", o->case_path) >= (int)sizeof csv)
+    if (!o->csv && snprintf(csv, sizeof csv, "%s/" AMSPH_OUTPUT_ANALYSIS, o->case_path) >= (int)sizeof csv)
         return bad_usage("output directory path too long", o->case_path);
     const char *path = o->csv ? o->csv : csv;
     const int status = amsph_analyze(o->case_path, &o->axes, path);

@@ -1,5 +1,6 @@
 #include "output.h"
 
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <hdf5.h>
@@ -7,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "error.h"
 #include "h5.h"
@@ -63,7 +65,7 @@ int amsph_output_check_dir(const char *dir, int force)
     closedir(d);
     if (example[0] && !force)
         return amsph_bad_input("output directory %s already holds files (%s, ...); choose another "
-                               "or pass --force to replace files of the same names",
+                               "or pass --force to replace the run in it",
                                dir, example);
     return 0;
 }
@@ -122,6 +124,44 @@ int amsph_output_continue(amsph_output *o, const amsph_snapshot_list *earlier, i
     AMSPH_CHECK(amsph_snapshot_list_copy(&o->list, earlier));
     o->first = in_place ? 0 : earlier->count;
     return 0;
+}
+
+/* The number of a snapshot file named snap_N.h5 (N in digits); -1 for any
+ * other name. */
+static long snapshot_number(const char *name)
+{
+    if (strncmp(name, "snap_", 5) || !isdigit((unsigned char)name[5]))
+        return -1;
+    char *end = NULL;
+    const long k = strtol(name + 5, &end, 10);
+    return strcmp(end, ".h5") ? -1 : k;
+}
+
+static int remove_file(const amsph_output *o, const char *name)
+{
+    char path[1100];
+    AMSPH_CHECK(amsph_output_path(o, name, path, sizeof path));
+    if (unlink(path) && errno != ENOENT)
+        return amsph_fail("cannot remove %s: %s", path, strerror(errno));
+    return 0;
+}
+
+int amsph_output_clear(const amsph_output *o, int in_place)
+{
+    static const char *const run_files[] = {AMSPH_OUTPUT_INDEX, AMSPH_OUTPUT_SERIES, AMSPH_OUTPUT_CHECKPOINT,
+                                            AMSPH_OUTPUT_ANALYSIS};
+    for (size_t k = 0; k < sizeof run_files / sizeof run_files[0] && !in_place; ++k)
+        AMSPH_CHECK(remove_file(o, run_files[k]));
+    DIR *d = opendir(o->dir);
+    if (!d)
+        return amsph_fail("cannot read the output directory %s: %s", o->dir, strerror(errno));
+    const long from = in_place ? o->list.count : 0;
+    int status = 0;
+    for (const struct dirent *e; !status && (e = readdir(d));)
+        if (snapshot_number(e->d_name) >= from)
+            status = remove_file(o, e->d_name);
+    closedir(d);
+    return status;
 }
 
 void amsph_output_close(amsph_output *o)
@@ -209,7 +249,7 @@ static int write_xdmf(const amsph_output *o)
 {
     char path[1100], *text = NULL;
     size_t size = 0;
-    AMSPH_CHECK(amsph_output_path(o, "snapshots.xmf", path, sizeof path));
+    AMSPH_CHECK(amsph_output_path(o, AMSPH_OUTPUT_INDEX, path, sizeof path));
     FILE *f = open_memstream(&text, &size);
     if (!f)
         return amsph_fail("out of host memory for %s", path);

@@ -56,10 +56,19 @@ static double fraction_done(const run *r)
     return fmin(f, 1.0);
 }
 
+/* The longest duration format_duration writes as h:mm:ss. */
+#define LONGEST_DAYS 99
+
+/* h:mm:ss; "?" when unknown, ">99 days" beyond LONGEST_DAYS (also an
+ * estimate that overflowed to infinity). */
 static void format_duration(double seconds, char *out, size_t size)
 {
-    if (!isfinite(seconds) || seconds < 0.0) {
+    if (isnan(seconds) || seconds < 0.0) {
         snprintf(out, size, "?");
+        return;
+    }
+    if (seconds > LONGEST_DAYS * 86400.0) { /* also keeps the conversion below in range */
+        snprintf(out, size, ">%d days", LONGEST_DAYS);
         return;
     }
     const long long whole = (long long)(seconds + 0.5);
@@ -112,7 +121,7 @@ static int write_checkpoint(run *r)
 {
     amsph_sim *s = r->s;
     char path[1100];
-    AMSPH_CHECK(amsph_output_path(&r->out, "checkpoint.h5", path, sizeof path));
+    AMSPH_CHECK(amsph_output_path(&r->out, AMSPH_OUTPUT_CHECKPOINT, path, sizeof path));
     amsph_checkpoint ck = {.dim = s->config.dim, .case_hash = s->config.text_hash};
     snprintf(ck.case_path, sizeof ck.case_path, "%s", s->config.path);
     ck.run.next_output = r->next_output;
@@ -237,8 +246,9 @@ static int start(run *r, amsph_sim *s, const amsph_run_options *options)
         r->next_output = resume->next_output;
         r->wall_before = resume->wall_seconds;
     }
+    AMSPH_CHECK(amsph_output_clear(&r->out, in_place));
     char path[1100];
-    AMSPH_CHECK(amsph_output_path(&r->out, "series.csv", path, sizeof path));
+    AMSPH_CHECK(amsph_output_path(&r->out, AMSPH_OUTPUT_SERIES, path, sizeof path));
     AMSPH_CHECK(amsph_series_open(&r->series, path, in_place ? resume->series_bytes : -1));
     const double now = wall_seconds();
     r->pr = (progress){.quiet = options->quiet, .terminal = isatty(2), .start = now, .last_print = now,

@@ -34,6 +34,14 @@ expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml)
 expect_text("-o OUTDIR")
 expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml -o ${WORK}/x --backend cuda)
 expect_text("--backend takes openmp or opencl")
+expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml -o "")
+expect_text("-o needs a directory")
+# Integers beyond an option's range (or beyond 64 bits) are bad usage, not
+# wrapped or clamped into it.
+expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml -o ${WORK}/x --device 4294967296)
+expect_text("--device takes a device index from 0 to 2147483647: 4294967296")
+expect_status(2 ${AMSPH} run ${SOURCE}/cases/examples/falling_block_2d.yaml -o ${WORK}/x --max-steps 99999999999999999999)
+expect_text("--max-steps takes a step count from 1 to 9223372036854775807: 99999999999999999999")
 # Geometry blocks that would place particles on top of each other are bad
 # input for check and run alike; a `fill` block fills around the others.
 set(overlap "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05\nend_time: 0.01
@@ -164,6 +172,7 @@ file(WRITE ${WORK}/dambreak.yaml "${text}")
 set(dambreak_case ${WORK}/dambreak.yaml)
 expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/stop --max-steps 30)
 expect_text("stopped at step 30")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy ${WORK}/stop/checkpoint.h5 ${WORK}/stop/step30.h5)
 expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/elsewhere --max-steps 60 --restart ${WORK}/stop/checkpoint.h5 --quiet)
 expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/stop --max-steps 60 --restart ${WORK}/stop/checkpoint.h5 --quiet)
 foreach(f stop/snap_000004.h5 stop/series.csv elsewhere/snap_000004.h5 elsewhere/checkpoint.h5)
@@ -179,6 +188,31 @@ expect_status(2 ${AMSPH} run ${example} -o ${WORK}/x --restart ${WORK}/stop/chec
 expect_text("written for another case")
 expect_status(2 ${AMSPH} run ${dambreak_case} -o ${WORK}/x --restart ${WORK}/nothing.h5)
 expect_text("cannot open the restart file")
+# Restarted in place from an earlier checkpoint, the run removes the
+# snapshots written after it (snap_000004.h5 of the run to step 60).
+expect_status(0 ${AMSPH} run ${dambreak_case} -o ${WORK}/stop --max-steps 31 --restart ${WORK}/stop/step30.h5 --quiet)
+if(EXISTS ${WORK}/stop/snap_000004.h5 OR NOT EXISTS ${WORK}/stop/snap_000003.h5)
+  message(FATAL_ERROR "the restart from step 30 left snap_000004.h5 or wrote no snap_000003.h5")
+endif()
+
+# --force replaces the run in a directory: a shorter run leaves none of the
+# longer one's snapshots for analyze to read, and other files stay.
+foreach(end 0.02 0.01)
+  string(REPLACE "END" "${end}" text "${dambreak}")
+  file(WRITE ${WORK}/dambreak_${end}.yaml "${text}")
+endforeach()
+expect_status(0 ${AMSPH} run ${WORK}/dambreak_0.02.yaml -o ${WORK}/forced --quiet)
+file(WRITE ${WORK}/forced/notes.txt "kept")
+expect_status(0 ${AMSPH} run ${WORK}/dambreak_0.01.yaml -o ${WORK}/forced --quiet --force)
+if(EXISTS ${WORK}/forced/snap_000003.h5 OR NOT EXISTS ${WORK}/forced/notes.txt)
+  message(FATAL_ERROR "--force left snap_000003.h5 of the earlier run or removed notes.txt")
+endif()
+expect_status(0 ${AMSPH} analyze ${WORK}/forced)
+file(STRINGS ${WORK}/forced/melt_pool.csv rows)
+list(LENGTH rows n_rows)
+if(NOT n_rows EQUAL 4) # the header and t = 0, 0.005, 0.01
+  message(FATAL_ERROR "analyze after --force read ${n_rows} rows, expected 4")
+endif()
 
 # SIGTERM (and SIGINT, the same handler) stops a run with a checkpoint and a
 # final snapshot; the exit status is 128 + the signal number.
@@ -192,6 +226,12 @@ if(TIMEOUT)
   if(NOT EXISTS ${WORK}/signal/checkpoint.h5)
     message(FATAL_ERROR "SIGTERM left no checkpoint")
   endif()
+  # An ETA too long for h:mm:ss (here 1e300 s of simulated time) is ">99 days".
+  string(REPLACE "END" "1e300" text "${dambreak}")
+  string(REPLACE "output_interval: 0.005" "output_interval: 1e294" text "${text}")
+  file(WRITE ${WORK}/endless.yaml "${text}")
+  expect_status(143 ${TIMEOUT} --foreground --preserve-status -s TERM 1 ${AMSPH} run ${WORK}/endless.yaml -o ${WORK}/endless)
+  expect_text("ETA >99 days\n")
 endif()
 
 # amsph bench throughput: a tiny run prints its table (tests/test_bench.c
@@ -206,7 +246,7 @@ expect_text("bench knows: grid, throughput")
 expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --particles 1.5)
 expect_text("--particles takes a count from 1 to 2e9: 1.5")
 expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --steps 0)
-expect_text("--steps takes a count from 1 to 1e6: 0")
+expect_text("--steps takes a count from 1 to 1000000: 0")
 expect_status(2 ${AMSPH} bench throughput ${dambreak_2d} --csv ${WORK}/plain/bench.csv)
 expect_text("cannot write ${WORK}/plain/bench.csv")
 
@@ -239,9 +279,23 @@ expect_status(2 ${AMSPH} analyze ${WORK}/run --scan w)
 expect_text("--scan takes x, y or z: w")
 expect_status(2 ${AMSPH} analyze ${WORK}/run --up x)
 expect_text("must be two different axes")
+file(MAKE_DIRECTORY ${WORK}/not_hdf5)
+file(WRITE ${WORK}/not_hdf5/snap_000000.h5 "")
+expect_status(2 ${AMSPH} analyze ${WORK}/not_hdf5)
+expect_text("${WORK}/not_hdf5/snap_000000.h5 is not a readable HDF5 snapshot")
 
 # README.md documents every case-file key that `amsph keys` knows.
 execute_process(COMMAND ${AMSPH} keys OUTPUT_VARIABLE keys RESULT_VARIABLE status)
+
+# An unknown key's message lists every key of its section, even the longest
+# list (materials[]).
+string(REGEX MATCHALL "\\| `materials\\[\\]\\.[a-z_]+`" rows "${keys}")
+string(REGEX REPLACE "\\| `materials\\[\\]\\.([a-z_]+)`" "\\1" material_keys "${rows}")
+string(REPLACE ";" ", " material_keys "${material_keys}")
+file(WRITE ${WORK}/unknown_material_key.yaml "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05
+end_time: 0.01\noutput_interval: 0.01\nmaterials:\n  - {name: water, density: 1000, zzzzqqqq: 1}\n")
+expect_status(2 ${AMSPH} check ${WORK}/unknown_material_key.yaml)
+expect_text("unknown key 'zzzzqqqq' in materials[0] (allowed: ${material_keys})\n")
 string(REPLACE "\n" ";" rows "${keys}")
 foreach(row ${rows})
   if(row MATCHES "^\\| `([^`]+)`")

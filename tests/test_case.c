@@ -118,6 +118,14 @@ static const bad_case bad_cases[] = {
     {"two documents", BASE2 "---\n" BASE2,
      NAME ":17: a second YAML document starts here; a case file holds exactly one"},
 
+    /* more outputs than anyone means */
+    {"too many outputs", DOMAIN2 "dx: 0.01\nend_time: 1\noutput_interval: 1e-8\n" MATS GEO_BOX,
+     NAME ":7: 'output_interval' (1e-08 s) gives 1e+08 outputs up to 'end_time' (1 s); at most 1e+07 are "
+          "allowed"},
+    {"infinitely many outputs", DOMAIN2 "dx: 0.01\nend_time: 1e300\noutput_interval: 1e-300\n" MATS GEO_BOX,
+     NAME ":7: 'output_interval' (1e-300 s) gives inf outputs up to 'end_time' (1e+300 s); at most 1e+07 "
+          "are allowed"},
+
     /* unknown keys, duplicate keys */
     {"unknown key with suggestion", BASE2 "end_tme: 3\n",
      NAME ":17: unknown key 'end_tme' in top level; did you mean 'end_time'?"},
