@@ -263,6 +263,8 @@ static const key_spec specs[] = {
      .doc = "Per direction: whether the domain wraps around"},
     {.section = SEC_TOP, .key = "dx", .type = VT_NUMBER, .unit = "m",
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = CASE(dx),
+     .rule = "at least 100 times the spacing of the particles' float (or double) positions at the domain's "
+             "far corner",
      .doc = "Initial particle spacing"},
     {.section = SEC_TOP, .key = "h_over_dx", .type = VT_NUMBER, .flags = F_FROM_LO | F_UP_TO_HI,
      .lo = 1, .hi = 3, .def = 1.2, .offset = CASE(h_over_dx),
@@ -472,6 +474,7 @@ static const key_spec specs[] = {
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = LASER(power), .doc = "Beam power P"},
     {.section = SEC_LASER, .key = "radius", .type = VT_NUMBER, .unit = "m",
      .flags = F_REQUIRED | F_ABOVE_LO, .lo = 0, .offset = LASER(radius),
+     .rule = "at least the spacing the beam is sampled at: `dx` (surface), `laser.bin_size` (volumetric)",
      .doc = "1/e² radius r_l: irradiance 2P/(π r_l²) exp(-2 r²/r_l²) at distance r from the axis"},
     {.section = SEC_LASER, .key = "absorption", .type = VT_CHOICE, .choices = absorption_choices,
      .flags = F_SELECTS_VARIANT, .def = AMSPH_ABSORPTION_VOLUMETRIC, .offset = LASER(absorption),
@@ -1880,10 +1883,33 @@ static int check_output_count(parser *p, const scope *sc)
     return 0;
 }
 
+/* Particle positions are amsph_real: at a distance X from the origin a
+ * float tells positions apart only X FLT_EPSILON or so. A domain whose far
+ * corner leaves them coarser than this fraction of dx is refused (a 1 m
+ * domain may go down to dx = 12 um in float). */
+#define POSITION_RESOLUTION_MAX 0.01
+
+static int check_position_resolution(parser *p, const scope *sc)
+{
+    const amsph_case *c = p->c;
+    for (int d = 0; d < c->dim; d++) {
+        const double far = fmax(fabs(c->domain_min[d]), fabs(c->domain_max[d]));
+        const double apart = far * AMSPH_REAL_EPSILON;
+        if (apart > POSITION_RESOLUTION_MAX * c->dx)
+            return fail(p, line_of(found(sc, "domain")),
+                        "the domain reaches %g m from the origin along %c, where the particles' positions "
+                        "(%s) are %.2g m = %.2g dx apart (at most %g dx); move the domain next to the "
+                        "origin or make dx larger",
+                        far, "xyz"[d], sizeof(amsph_real) == sizeof(float) ? "float" : "double", apart,
+                        apart / c->dx, POSITION_RESOLUTION_MAX);
+    }
+    return 0;
+}
+
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p, const scope *sc)
 {
-    if (check_output_count(p, sc) || finish_grains(p) || check_gas(p) || check_contact_angles(p) ||
+    if (check_output_count(p, sc) || check_position_resolution(p, sc) || finish_grains(p) || check_gas(p) || check_contact_angles(p) ||
         check_verlet(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
@@ -2034,6 +2060,26 @@ static int finish_geometry(parser *p, const scope *sc)
 
 /* The beam direction (default: down), perpendicular to periodic directions;
  * off after on, room for both ramps; bins of dx by default. */
+/* The beam's Gaussian is sampled at the bin columns (volumetric) or at the
+ * surface particles (surface), a spacing b apart; the samples sum to the
+ * beam's power to within about 2 exp(-pi^2 r_l^2 / (2 b^2)) per axis across
+ * the beam (Poisson summation): 1.4% at r_l = b, 58% at b / 2, and a beam
+ * much narrower than b falls between the samples or takes many times its
+ * power. So the radius must reach the spacing. */
+static int check_beam_sampled(parser *p, const scope *sc)
+{
+    const amsph_laser_settings *l = &p->c->laser;
+    const int surface = l->absorption == AMSPH_ABSORPTION_SURFACE;
+    const double spacing = surface ? p->c->dx : l->bin_size;
+    if (l->radius < spacing)
+        return fail(p, line_of(found(sc, "radius")),
+                    "'laser.radius' (%g m) is below the spacing at which the beam is sampled, %s (%g m): "
+                    "the samples would not hold the beam's power; make the radius at least that, or "
+                    "the spacing smaller",
+                    l->radius, surface ? "dx" : "laser.bin_size", spacing);
+    return 0;
+}
+
 static int finish_laser(parser *p, const scope *sc)
 {
     static const char axis_name[3] = {'x', 'y', 'z'};
@@ -2064,7 +2110,7 @@ static int finish_laser(parser *p, const scope *sc)
                     l->ramp_time, l->off_time - l->on_time);
     if (!found(sc, "bin_size"))
         l->bin_size = p->c->dx;
-    return 0;
+    return check_beam_sampled(p, sc);
 }
 
 /* The prescribed temperature stays at or above 0 K. */

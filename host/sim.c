@@ -388,6 +388,21 @@ int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out)
     return amsph_reduce_max(s->backend, s->work, p->n, out);
 }
 
+/* A first step that the run could not finish with: the case's values set
+ * it (a sound speed of 1e19 m/s, a conductivity of 1e30 W/(m K)), so it
+ * is bad input naming its limit, not a flow that blows up later. */
+#define MAX_STEPS_TO_END 1e12
+
+static int check_first_dt(const amsph_sim *s, double dt)
+{
+    const double steps = (s->config.end_time - s->time) / dt;
+    if (!(dt > 0.0) || steps > MAX_STEPS_TO_END)
+        return amsph_bad_input("the first time step is %.3g s (%s limit), %.3g steps to end_time = %g s (at "
+                               "most %g); check the case's values that set the %s limit",
+                               dt, s->dt_limit, steps, s->config.end_time, MAX_STEPS_TO_END, s->dt_limit);
+    return 0;
+}
+
 /* Without the fluid module the limits are the kinematic CFL and the body
  * force (Fuchs et al. 2022 Eq. 42); the fluid module adds its own. */
 static int stable_dt(amsph_sim *s, double *dt)
@@ -412,6 +427,8 @@ static int stable_dt(amsph_sim *s, double *dt)
         amsph_thermal_dt(s, dt, &s->dt_limit);
     if (s->config.grains.enabled)
         amsph_grains_dt(s, dt, &s->dt_limit);
+    if (s->dt_min == 0.0 && !(*dt > 0.0 && isinf(*dt)))
+        AMSPH_CHECK(check_first_dt(s, *dt));
     if (s->dt_min == 0.0 && isfinite(*dt))
         s->dt_min = s->config.fluid.dt_min > 0.0 ? s->config.fluid.dt_min : 1e-6 * *dt;
     if (*dt < s->dt_min || !(*dt > 0.0))

@@ -122,8 +122,8 @@ static const bad_case bad_cases[] = {
     {"too many outputs", DOMAIN2 "dx: 0.01\nend_time: 1\noutput_interval: 1e-8\n" MATS GEO_BOX,
      NAME ":7: 'output_interval' (1e-08 s) gives 1e+08 outputs up to 'end_time' (1 s); at most 1e+07 are "
           "allowed"},
-    {"infinitely many outputs", DOMAIN2 "dx: 0.01\nend_time: 1e300\noutput_interval: 1e-300\n" MATS GEO_BOX,
-     NAME ":7: 'output_interval' (1e-300 s) gives inf outputs up to 'end_time' (1e+300 s); at most 1e+07 "
+    {"outputs beyond any count", DOMAIN2 "dx: 0.01\nend_time: 1e38\noutput_interval: 1e-37\n" MATS GEO_BOX,
+     NAME ":7: 'output_interval' (1e-37 s) gives 1e+75 outputs up to 'end_time' (1e+38 s); at most 1e+07 "
           "are allowed"},
 
     /* unknown keys, duplicate keys */
@@ -428,6 +428,14 @@ static const bad_case bad_cases[] = {
                     "    grain_radius_min: 0.06\n    grain_radius_max: 0.08\n",
      NAME ":21: 'geometry[0].grain_radius_min' (0.06 m), 'grain_radius' (0.05 m) and "
           "'grain_radius_max' (0.08 m) must be in increasing order, min below max"},
+#if !AMSPH_DOUBLE
+    /* floats 1e4 m from the origin are 1.2 mm apart, 0.12 dx */
+    {"domain too far from the origin for its dx",
+     "dimension: 2\ndomain:\n  min: [0, 0]\n  max: [1e4, 1]\ndx: 0.01\nend_time: 1\noutput_interval: 0.1\n" MATS
+         GEO_BOX,
+     NAME ":3: the domain reaches 10000 m from the origin along x, where the particles' positions (float) are "
+          "0.0012 m = 0.12 dx apart (at most 0.01 dx); move the domain next to the origin or make dx larger"},
+#endif
     /* 1.6e-9 of the draws within the range: the deposit would redraw without end */
     {"powder bed log-normal too wide for its range",
      HEAD2 MATS BED "    distribution: lognormal\n    grain_radius: 0.05\n    log_sd: 1e8\n"
@@ -461,6 +469,12 @@ static const bad_case bad_cases[] = {
     /* the laser module */
     {"laser missing power", BASE2 "laser: {radius: 1e-4, absorption_coefficient: 10, start: [0.5, 0.5]}\n",
      NAME ":17: missing required key 'power' in laser"},
+    /* a beam narrower than its bins: the sampled Gaussian misses its power */
+    {"laser narrower than its bins",
+     BASE2 "laser: {power: 1, radius: 0.005, absorption_coefficient: 10, start: [0.5, 0.5]}\n",
+     NAME ":17: 'laser.radius' (0.005 m) is below the spacing at which the beam is sampled, laser.bin_size "
+          "(0.01 m): the samples would not hold the beam's power; make the radius at least that, or the "
+          "spacing smaller"},
     {"laser unknown key", BASE2 "laser: {powr: 1}\n",
      NAME ":17: unknown key 'powr' in laser; did you mean 'power'?"},
     {"laser power zero", BASE2 "laser: {power: 0, radius: 1, absorption_coefficient: 1, start: [0, 0]}\n",
@@ -764,7 +778,7 @@ static const char full3d[] =
     "  direction: [0, -2.5, 0]\n"
     "  absorption_coefficient: 2e3\n"
     "  absorption: volumetric\n"
-    "  radius: 5e-5\n"
+    "  radius: 0.02\n"
     "  power: 150\n"
     "materials:\n"
     "  - name: water\n"
@@ -827,7 +841,7 @@ static void check_full3d(const amsph_case *c)
     double r = 1 / sqrt(2);
     expect(vec_is(tilted->axis, r, r, 0), "axis normalised");
     const amsph_laser_settings *l = &c->laser;
-    expect(l->enabled && near(l->power, 150) && near(l->radius, 5e-5), "laser power, radius");
+    expect(l->enabled && near(l->power, 150) && near(l->radius, 0.02), "laser power, radius");
     expect(l->absorption == AMSPH_ABSORPTION_VOLUMETRIC && near(l->absorption_coefficient, 2000),
            "laser absorption");
     expect(vec_is(l->direction, 0, -1, 0), "laser direction normalised");
@@ -839,13 +853,13 @@ static void check_full3d(const amsph_case *c)
 }
 
 /* A surface-absorbing laser with every optional key left out. */
-static const char laser2d[] = BASE2 "laser: {power: 100, radius: 1e-4, absorption: surface, start: [0.5, 0.5]}\n";
+static const char laser2d[] = BASE2 "laser: {power: 100, radius: 0.02, absorption: surface, start: [0.5, 0.5]}\n";
 
 static void check_laser2d(const amsph_case *c)
 {
     check_default_values(c);
     const amsph_laser_settings *l = &c->laser;
-    expect(l->enabled && near(l->power, 100) && near(l->radius, 1e-4), "laser power, radius");
+    expect(l->enabled && near(l->power, 100) && near(l->radius, 0.02), "laser power, radius");
     expect(l->absorption == AMSPH_ABSORPTION_SURFACE && near(l->absorptivity, 1), "absorptivity default");
     expect(vec_is(l->direction, 0, -1, 0), "direction default: -y");
     expect(vec_is(l->start, 0.5, 0.5, 0) && l->n_path == 0, "start, no path");

@@ -704,6 +704,37 @@ static void test_density_guard(void)
         }
 }
 
+/* A fluid particle whose velocity is NaN moves to a position that is not
+ * finite: the step's sort refuses it (the run then writes its last good
+ * state) instead of dropping it as a particle that left the domain, which
+ * the guards after the sort would never have seen. */
+static void test_not_finite_position(void)
+{
+    amsph_case c;
+    if (testing_load_case("couette_2d.yaml", &c))
+        return;
+    amsph_sim s;
+    amsph_backend *b = start_sim(&c, &s);
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s.particles, &h));
+    int i = 0;
+    while (((int *)h.data[AMSPH_FIELD_KIND])[i] != AMSPH_KIND_FLUID)
+        ++i;
+    amsph_host_real(&h, AMSPH_FIELD_VELOCITY)[3 * i] = (amsph_real)NAN;
+    amsph_particles_free(&s.particles);
+    CHECK_OK(amsph_particles_upload(b, &h, &s.particles));
+    amsph_host_free(&h);
+    double dt = 0.0;
+    CHECK_OK(amsph_sim_stable_dt(&s, &dt));
+    const int status = amsph_sim_step(&s, dt);
+    CHECK(status != 0 && s.grid.not_finite == 1 && s.guard_failed && s.particles.removed == 0,
+          "a NaN velocity: step status %d, %d not finite, guard %d, %lld left the domain", status,
+          s.grid.not_finite, s.guard_failed, s.particles.removed);
+    CHECK(strstr(amsph_last_error(), "1 particles have a position that is not finite") != NULL, "%s",
+          amsph_last_error());
+    stop_sim(b, &s);
+}
+
 /* The coarse 2D dam break (dx = 0.0146, 10 particles across the column)
  * pairs two fluid particles under tension closer than 0.3 dx at t = 0.275 s
  * without Monaghan's tensile correction; with it the run reaches its end. */
@@ -921,6 +952,7 @@ int main(void)
     test_plain_options_loop();
     test_guard_stops_run();
     test_density_guard();
+    test_not_finite_position();
     test_channels();
     test_hydrostatic(NULL);
     test_hydrostatic(VERLET_KEYS);
