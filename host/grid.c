@@ -40,6 +40,13 @@ static int layout_cells(amsph_grid *g, int dim, const double lo[3], const double
     return 0;
 }
 
+int amsph_grid_check_layout(int dim, const double lo[3], const double hi[3], const int periodic[3], double support)
+{
+    amsph_grid g;
+    memset(&g, 0, sizeof g);
+    return layout_cells(&g, dim, lo, hi, periodic, support);
+}
+
 int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
                     const double hi[3], const int periodic[3], double support, int capacity)
 {

@@ -34,6 +34,10 @@ typedef struct {
  * least 3 supports. */
 int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3],
                     const double hi[3], const int periodic[3], double support, int capacity);
+/* The cell layout's refusals of amsph_grid_init (a periodic axis shorter
+ * than 3 supports, more than 1e9 cells) without allocating anything. */
+int amsph_grid_check_layout(int dim, const double lo[3], const double hi[3], const int periodic[3], double support);
+
 /* Bins and sorts the particles, reorders every present field but those of
  * g->recomputed, and drops the particles that left the domain (p->n
  * shrinks, p->removed grows) and those whose position is not finite

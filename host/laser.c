@@ -67,19 +67,15 @@ static void beam_across(int dim, const double d[3], double across[3])
         across[k] /= sqrt(norm);
 }
 
-/* Bin nodes across the beam per lateral axis (odd, the middle one on the
- * axis) and along it (from above the domain to below it). */
-static int lay_out_bins(amsph_sim *s)
+int amsph_laser_bins(const amsph_case *c, double support, int *lateral_nodes, int *depth_nodes)
 {
-    const amsph_case *c = &s->config;
     const amsph_laser_settings *l = &c->laser;
-    laser_params *p = &s->laser.params;
     const double reach = sqrt((double)c->dim) * l->bin_size;
-    if (reach > s->support)
+    if (reach > support)
         return amsph_bad_input("laser.bin_size %g m is too large: a bin node gathers its particles from "
-                          "the grid cells around it, which needs bin_size * sqrt(%d) <= the kernel "
-                          "support %g m; use bin_size <= %g m",
-                          l->bin_size, c->dim, s->support, s->support / sqrt((double)c->dim));
+                               "the grid cells around it, which needs bin_size * sqrt(%d) <= the kernel "
+                               "support %g m; use bin_size <= %g m",
+                               l->bin_size, c->dim, support, support / sqrt((double)c->dim));
     double extent = 0.0; /* of the domain along the beam */
     for (int k = 0; k < c->dim; ++k)
         extent += fabs(l->direction[k]) * (c->domain_max[k] - c->domain_min[k]);
@@ -88,12 +84,19 @@ static int lay_out_bins(amsph_sim *s)
     const double columns = pow(2.0 * half + 1.0, c->dim - 1);
     if (columns * depth > MAX_BIN_NODES)
         return amsph_bad_input("the laser bin grid would have %.3g nodes (at most %g): raise "
-                          "laser.bin_size or lower laser.window",
-                          columns * depth, (double)MAX_BIN_NODES);
-    p->lateral_nodes = 2 * (int)half + 1;
-    p->depth_nodes = (int)depth;
-    s->laser.columns = (int)columns;
-    s->laser.nodes = (int)(columns * depth);
+                               "laser.bin_size or lower laser.window",
+                               columns * depth, (double)MAX_BIN_NODES);
+    *lateral_nodes = 2 * (int)half + 1;
+    *depth_nodes = (int)depth;
+    return 0;
+}
+
+static int lay_out_bins(amsph_sim *s)
+{
+    laser_params *p = &s->laser.params;
+    AMSPH_CHECK(amsph_laser_bins(&s->config, s->support, &p->lateral_nodes, &p->depth_nodes));
+    s->laser.columns = s->config.dim == 3 ? p->lateral_nodes * p->lateral_nodes : p->lateral_nodes;
+    s->laser.nodes = s->laser.columns * p->depth_nodes;
     const size_t bytes = (size_t)s->laser.nodes * sizeof(amsph_real);
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_weight));
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_volume));

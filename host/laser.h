@@ -12,6 +12,13 @@
  * most the kernel support). Needs s->config, s->backend and s->support. */
 int amsph_laser_setup(amsph_sim *s, amsph_host_particles *h);
 
+/* The bin grid of volumetric absorption for the case at kernel support
+ * `support` (m): nodes across the beam per lateral axis (odd, the middle
+ * one on the axis) and along it (from above the domain to below it). Bad
+ * input where bin_size sqrt(d) exceeds the support (a node gathers from the
+ * grid cells around it) or the nodes would be too many. */
+int amsph_laser_bins(const amsph_case *c, double support, int *lateral_nodes, int *depth_nodes);
+
 /* Fills laser_power for the beam at time t (particles sorted, densities
  * current) and sets s->laser.absorbed_power, the total the particles
  * absorbed, W (2D: W per metre of depth). */

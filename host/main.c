@@ -382,16 +382,19 @@ static int command_run(const cli_options *o)
     return status ? status : stop_signal ? 128 + (int)stop_signal : 0;
 }
 
-/* Parses the case and builds its scene (the errors of placing the blocks:
- * overlaps, empty blocks, particles outside the domain), as `run` would. */
+/* Parses the case, lays out its grid and laser bins and builds its scene
+ * (the errors of placing the blocks: overlaps, empty blocks, particles
+ * outside the domain), as `run` would. */
 static int command_check(const cli_options *o)
 {
     amsph_case c;
     int status = load_case(o->case_path, &c);
     if (status)
         return status;
-    amsph_host_particles h;
-    status = amsph_scene_build(&c, &h);
+    amsph_host_particles h = {0};
+    status = amsph_sim_check_layout(&c);
+    if (!status)
+        status = amsph_scene_build(&c, &h);
     if (!status)
         printf("%s: ok (dimension %d, %d materials, %d geometry blocks, %d particles)\n", c.path, c.dim,
                c.n_materials, c.n_geometry, h.n);

@@ -196,13 +196,36 @@ static int build_particles(amsph_sim *s)
 }
 
 /* What every sim has before its particles: settings and built kernels. */
+/* The kernel's support at the case's initial smoothing length, m. */
+static double kernel_support(const amsph_case *c)
+{
+    return amsph_support_over_h(c->kernel) * c->h_over_dx * c->dx;
+}
+
+/* The grid's cells hold the largest support of the fluid's pair loops
+ * (kernels/fluid.cl). */
+static double grid_support(const amsph_case *c)
+{
+    return amsph_fluid_max_smoothing_ratio(c) * kernel_support(c);
+}
+
+int amsph_sim_check_layout(const amsph_case *c)
+{
+    AMSPH_CHECK(amsph_grid_check_layout(c->dim, c->domain_min, c->domain_max, c->periodic, grid_support(c)));
+    int lateral_nodes, depth_nodes;
+    if (c->laser.enabled && c->laser.absorption == AMSPH_ABSORPTION_VOLUMETRIC)
+        AMSPH_CHECK(amsph_laser_bins(c, kernel_support(c), &lateral_nodes, &depth_nodes));
+    return 0;
+}
+
 static int prepare(const amsph_case *c, amsph_backend *b, amsph_sim *s)
 {
     memset(s, 0, sizeof *s);
     s->config = *c;
     s->backend = b;
+    AMSPH_CHECK(amsph_sim_check_layout(c)); /* before the scene is built */
     s->h = c->h_over_dx * c->dx;
-    s->support = amsph_support_over_h(c->kernel) * s->h;
+    s->support = kernel_support(c);
     s->dt_limit = "none";
     amsph_build_options build = {.dim = c->dim, .kernel = (int)c->kernel};
     return amsph_build(b, &build);
@@ -214,9 +237,8 @@ static int allocate_device_state(amsph_sim *s)
     const amsph_case *c = &s->config;
     amsph_backend *b = s->backend;
     const int capacity = s->particles.capacity;
-    /* cells for the largest support of the fluid's pair loops (kernels/fluid.cl) */
-    AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic,
-                                amsph_fluid_max_smoothing_ratio(c) * s->support, capacity));
+    AMSPH_CHECK(amsph_grid_init(&s->grid, b, c->dim, c->domain_min, c->domain_max, c->periodic, grid_support(c),
+                                capacity));
     s->grid.recomputed = amsph_fluid_recomputed_fields(s);
     if (c->surface.enabled)
         AMSPH_CHECK(amsph_surface_allocate(s));

@@ -215,6 +215,10 @@ int amsph_sim_max_norm(amsph_sim *s, amsph_field_id f, double *out);
 
 /* The step the stability limits allow now, s (sets s->dt_limit). */
 int amsph_sim_stable_dt(amsph_sim *s, double *dt);
+
+/* What amsph_sim_create would refuse of the case's grid and laser bins
+ * (bad input), checked without a backend: for `amsph check`. */
+int amsph_sim_check_layout(const amsph_case *c);
 /* Advances by dt (kick-drift-kick), then checks the guards. */
 int amsph_sim_step(amsph_sim *s, double dt);
 

@@ -77,23 +77,24 @@ expect_text("pressed.yaml:11: a grain particle at (0.375, 0.475, 0) m starts 0.4
 string(REPLACE "SECOND" "0.5" text "${pressed}")
 file(WRITE ${WORK}/apart.yaml "${text}")
 expect_status(0 ${AMSPH} check ${WORK}/apart.yaml)
-# A scene's size is checked before it is walked: two small blocks 50 m from
-# the origin at dx = 1 mm (2.5e9 cells of dx in the domain; the overlap test
-# used to bucket them all and crashed) build at once, and a block of 8e12
-# lattice points is refused instead of walked. A dx finer than the float
-# positions resolve in the domain is refused first.
-set(far "dimension: 2\ndomain: {min: [0, 0], max: [50, 50]}\ndx: 1.0e-3\nend_time: 0.01
+# A scene's size is checked before it is walked: two small blocks 25 m from
+# the origin at dx = 1 mm (6.25e8 cells of dx in the domain, which the
+# overlap test used to allocate; beyond 2^31 of them it crashed) build at
+# once, and a block of 4e10 lattice points (a tank of 100000 wall layers)
+# is refused instead of walked. A dx finer than the float positions resolve
+# in the domain is refused first.
+set(far "dimension: 2\ndomain: {min: [0, 0], max: [25, 25]}\ndx: 1.0e-3\nend_time: 0.01
 output_interval: 0.01\nmaterials:\n  - {name: water, density: 1000}\ngeometry:
-  - {shape: box, kind: fluid, material: water, min: [49.9, 49.9], max: [49.91, 49.91]}
-  - {shape: box, kind: fluid, material: water, min: [49.95, 49.9], max: [49.96, 49.91]}\n")
+  - {shape: box, kind: fluid, material: water, min: [24.9, 24.9], max: [24.91, 24.91]}
+  - {shape: box, kind: fluid, material: water, min: [24.95, 24.9], max: [24.96, 24.91]}\n")
 file(WRITE ${WORK}/far.yaml "${far}")
 expect_status(0 ${AMSPH} check ${WORK}/far.yaml)
 expect_text("2 geometry blocks, 200 particles)")
-file(WRITE ${WORK}/huge_block.yaml "dimension: 3\ndomain: {min: [0, 0, 0], max: [1, 1, 1]}\ndx: 2.0e-5
+file(WRITE ${WORK}/huge_block.yaml "dimension: 2\ndomain: {min: [0, 0], max: [1, 1]}\ndx: 0.05
 end_time: 0.01\noutput_interval: 0.01\nmaterials:\n  - {name: water, density: 1000}\ngeometry:
-  - {shape: box, kind: fluid, material: water, min: [0.1, 0.1, 0.1], max: [0.5, 0.5, 0.5]}\n")
+  - {shape: box, kind: wall, material: water, min: [0.1, 0.1], max: [0.9, 0.9], layers: 100000}\n")
 expect_status(2 ${AMSPH} check ${WORK}/huge_block.yaml)
-expect_text("huge_block.yaml:9: geometry block spans 8e+12 lattice points at dx = 2e-05 m")
+expect_text("huge_block.yaml:9: geometry block spans 4e+10 lattice points at dx = 0.05 m")
 string(REPLACE "SECOND" "" text "${overlap}")
 string(REPLACE "dx: 0.05" "dx: 1.0e-7" text "${text}")
 file(WRITE ${WORK}/too_fine.yaml "${text}")
@@ -120,12 +121,21 @@ file(WRITE ${WORK}/conductor.yaml "${text}")
 expect_status(2 ${AMSPH} run ${WORK}/conductor.yaml -o ${WORK}/conductor --force --quiet)
 expect_text("the first time step is 1.13e-33 s (diffusion limit), 8.86e+28 steps to end_time")
 # What the run finds wrong with the case when it lays out its grids is bad
-# input (exit 2), as the parser's findings are.
+# input (exit 2), as the parser's findings are, and `check` finds it too.
 file(READ ${SOURCE}/cases/validation/laser_slab_2d.yaml text)
 string(REPLACE "  power: 100\n  radius: 1.0e-4" "  power: 100\n  radius: 2.0e-3\n  bin_size: 1.0e-3" text "${text}")
 file(WRITE ${WORK}/coarse_bins.yaml "${text}")
 expect_status(2 ${AMSPH} run ${WORK}/coarse_bins.yaml -o ${WORK}/coarse_bins --force --quiet)
 expect_text("laser.bin_size 0.001 m is too large")
+expect_status(2 ${AMSPH} check ${WORK}/coarse_bins.yaml)
+expect_text("laser.bin_size 0.001 m is too large")
+string(REPLACE "SECOND" "" text "${overlap}")
+string(REPLACE "domain: {min: [0, 0], max: [1, 1]}" "domain: {min: [0, 0], max: [0.3, 1], periodic: [true, false]}"
+       text "${text}")
+string(REPLACE "max: [0.5, 0.5]}" "max: [0.3, 0.5]}" text "${text}")
+file(WRITE ${WORK}/short_periodic.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/short_periodic.yaml)
+expect_text("periodic axis x: the domain length 0.3 m is shorter than 3 kernel supports")
 expect_status(2 ${AMSPH} frobnicate)
 expect_text("unknown command")
 expect_status(0 ${AMSPH} --help)
