@@ -195,7 +195,6 @@ static int build_particles(amsph_sim *s)
     return status;
 }
 
-/* What every sim has before its particles: settings and built kernels. */
 /* The kernel's support at the case's initial smoothing length, m. */
 static double kernel_support(const amsph_case *c)
 {
@@ -218,6 +217,8 @@ int amsph_sim_check_layout(const amsph_case *c)
     return 0;
 }
 
+/* What every sim has before its particles: settings, a layout the case
+ * allows, and built kernels. */
 static int prepare(const amsph_case *c, amsph_backend *b, amsph_sim *s)
 {
     memset(s, 0, sizeof *s);
