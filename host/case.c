@@ -1909,8 +1909,8 @@ static int check_position_resolution(parser *p, const scope *sc)
 /* The fluid module's equation of state needs a speed of sound. */
 static int finish_top(parser *p, const scope *sc)
 {
-    if (check_output_count(p, sc) || check_position_resolution(p, sc) || finish_grains(p) || check_gas(p) || check_contact_angles(p) ||
-        check_verlet(p))
+    if (check_output_count(p, sc) || check_position_resolution(p, sc) || finish_grains(p) || check_gas(p) ||
+        check_contact_angles(p) || check_verlet(p))
         return CASE_ERROR;
     if (p->c->thermal.enabled && finish_thermal(p))
         return CASE_ERROR;
@@ -2058,12 +2058,11 @@ static int finish_geometry(parser *p, const scope *sc)
     return 0;
 }
 
-/* The beam direction (default: down), perpendicular to periodic directions;
- * off after on, room for both ramps; bins of dx by default. */
 /* The beam's Gaussian is sampled at the bin columns (volumetric) or at the
  * surface particles (surface), a spacing b apart; the samples sum to the
  * beam's power to within about 2 exp(-pi^2 r_l^2 / (2 b^2)) per axis across
- * the beam (Poisson summation): 1.4% at r_l = b, 58% at b / 2, and a beam
+ * the beam (Poisson summation; the sums give +-1.4% at r_l = b, -57% to
+ * +60% at b / 2 with the axis on a sample or between two), and a beam
  * much narrower than b falls between the samples or takes many times its
  * power. So the radius must reach the spacing. */
 static int check_beam_sampled(parser *p, const scope *sc)
@@ -2080,6 +2079,9 @@ static int check_beam_sampled(parser *p, const scope *sc)
     return 0;
 }
 
+/* The beam direction (default: down), perpendicular to periodic directions;
+ * off after on, room for both ramps; bins of dx by default; a radius the
+ * samples resolve. */
 static int finish_laser(parser *p, const scope *sc)
 {
     static const char axis_name[3] = {'x', 'y', 'z'};

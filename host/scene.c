@@ -16,7 +16,7 @@ typedef struct {
     int dim;
     double lo[3], dx;
     int count[3];
-    double points; /* count[0] count[1] count[2], before any axis is clipped to INT_MAX */
+    double points; /* count[0] count[1] count[2]; infinite where an axis would pass INT_MAX */
 } lattice;
 
 /* A block whose lattice has more points than this is refused before it is
@@ -29,9 +29,9 @@ static lattice lattice_over(int dim, const double lo[3], const double hi[3], dou
     lattice l = {.dim = dim, .dx = dx, .count = {1, 1, 1}, .points = 1.0};
     for (int d = 0; d < dim; ++d) {
         l.lo[d] = lo[d];
-        const double n = floor((hi[d] - lo[d]) / dx + 0.5);
-        l.count[d] = n > 0.0 ? n < INT_MAX ? (int)n : INT_MAX : 0;
-        l.points *= n > 0.0 ? n : 0.0;
+        const double n = fmax(floor((hi[d] - lo[d]) / dx + 0.5), 0.0);
+        l.count[d] = n <= INT_MAX ? (int)n : INT_MAX;
+        l.points *= n <= INT_MAX ? n : INFINITY;
     }
     return l;
 }

@@ -141,11 +141,12 @@ static int update_temperature(amsph_sim *s, double dt)
 }
 
 /* The sort after a step's move: a position that is not finite there is a
- * state that blew up. */
+ * state that blew up, a failed guard (the run writes the last good state). */
 static int sort_moved(amsph_sim *s)
 {
     AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
-    if (s->grid.not_finite)
+    s->guard_failed = s->grid.not_finite > 0;
+    if (s->guard_failed)
         return amsph_fail("guard 'finite values' failed: step %lld, t = %.6g s: %d particles have a position "
                           "that is not finite (NaN or inf); reduce cfl or check the case's forces and "
                           "material values",
@@ -533,11 +534,7 @@ int amsph_sim_step(amsph_sim *s, double dt)
 {
     amsph_phase outside;
     AMSPH_CHECK(amsph_sim_phase(s, AMSPH_PHASE_INTEGRATION, &outside));
-    const int status = s->fluid.one_pass ? verlet_advance(s, dt) : leapfrog_advance(s, dt);
-    if (status) {
-        s->guard_failed = s->grid.not_finite > 0; /* the run writes the last good state */
-        return status;
-    }
+    AMSPH_CHECK(s->fluid.one_pass ? verlet_advance(s, dt) : leapfrog_advance(s, dt));
     s->time += dt;
     s->dt = dt;
     ++s->step;
