@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
-"""Writes cases/am/binder_jetting_{1,10,50}ms_2d.yaml, the binder-jetting scene
-of Fuchs et al. 2022 Sec. 4.2 at the three droplet speeds, from one template
-(the settings that follow from the speed are worked out here)."""
+"""Writes cases/am/binder_jetting_{1,10,50}ms_2d.yaml and
+binder_jetting_{1,10}ms_3d.yaml, the binder-jetting scene of Fuchs et al. 2022
+Sec. 4.2 at the droplet speeds, from one template (the settings that follow
+from the speed and the dimension are worked out here)."""
 import math
 import pathlib
+import re
 
-TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in 2D and without the gas
+TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and without the gas
 # phase: a binder droplet of 80 um diameter (rho 1000, eta 1e-3, sigma 0.5,
-# Fuchs Table 4) falls at @SPEED@ m/s onto a bed of mobile steel grains
+# Fuchs Table 4) falls at @SPEED@ m/s onto a bed of @GRAINS@mobile steel grains
 # (log-normal diameters 16 to 32 um, settled by the powder-bed generator,
 # each grain a rigid body of the `grains:` module) on a 20 um substrate,
-# in a closed box 320 um wide. Its centre starts 100 um above the
+# in a closed box @BOX@. Its centre starts 100 um above the
 # substrate, as Fuchs's. The binder meets the grains, the substrate and
 # the walls at Fuchs's equilibrium wetting angle theta0 = 60 degrees
 # (Fuchs Table 4; `contact_angle`, normal correction of their Eqs. 27-29:
@@ -23,7 +25,7 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in 2D and without 
 # The speed of sound (@SOUND@ m/s for the binder) is the larger of twenty
 # times the impact speed (the impact's water hammer compresses by v / c,
 # the first particle to hit a grain by up to twice that) and ten times a
-# particle's capillary speed sqrt(sigma / (rho dx)) = 16 m/s. A binder
+# particle's capillary speed sqrt(sigma / (rho dx)) = @CAPILLARY@ m/s. A binder
 # particle caught between a grain and its neighbour was pressed by 20% at
 # 87 us at 10 m/s, hence the density bound of 35% (as the tracks'). The
 # grains get the binder's bulk modulus rho0 c0^2, as the buoyancy test of
@@ -36,15 +38,15 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in 2D and without 
 # a spray particle hit the wall at 60 m/s at 17.5 us (20% compression).
 # k_c stops a grain hit at the
 # droplet's speed within half a dx on two contacts, with a damping ratio
-# near 0.5. Written by tools/binder_variants.py.
-dimension: 2
-domain: {min: [-1.0e-5, -1.0e-5], max: [3.3e-4, 2.1e-4]}
-dx: 2.0e-6
-end_time: 1.0e-4
-output_interval: 2.0e-6
-gravity: [0, -9.81]
+# near 0.5.@NOTE@ Written by tools/binder_variants.py.
+dimension: @DIM@
+@DOMAIN@
+dx: @DX@
+end_time: @END@
+output_interval: @OUTPUT@
+@GRAVITY@
 fluid: {viscosity: artificial, artificial_alpha: 0.1, shifting: 0.5, max_density_error: 0.35,
-        barrier: {stiffness: @BARRIER@, damping: 0, distance: 1.0e-6}}
+        barrier: {stiffness: @BARRIER@, damping: 0, distance: @BARRIER_DISTANCE@}}
 surface: {h_over_dx: 2.25, interface_viscosity: 1.8}
 grains: {contact_stiffness: @STIFFNESS@, contact_damping: @DAMPING@}
 materials:
@@ -52,49 +54,83 @@ materials:
      contact_angle: 60}   # Fuchs et al. 2022 Table 4: theta0 = 60 degrees
   - {name: steel, density: 7430, sound_speed: @STEEL_SOUND@}
 geometry:
-  - {shape: box, kind: wall, material: steel, min: [0, 0], max: [3.2e-4, 2.0e-4], layers: 3}
+@GEOMETRY@
+'''
+
+GEOMETRY = {
+    2: '''  - {shape: box, kind: wall, material: steel, min: [0, 0], max: [3.2e-4, 2.0e-4], layers: 3}
   - {shape: box, kind: solid, material: steel, min: [0, 0], max: [3.2e-4, 2.0e-5]}
   - {shape: powder_bed, kind: grain, material: steel, min: [0, 2.0e-5], max: [3.2e-4, 6.0e-5],
      distribution: lognormal, grain_radius: 1.1e-5, log_sd: 0.2, grain_radius_min: 8.0e-6,
      grain_radius_max: 1.6e-5, seed: 1}
   - {shape: circle, kind: fluid, material: binder, center: [1.6e-4, 1.2e-4], radius: 4.0e-5,
-     velocity: [0, @VELOCITY@]}
-'''
+     velocity: [0, @VELOCITY@]}''',
+    # the bed's top face (the spreader's height) at 78 um lays 486 grains,
+    # about Fuchs's 500, below the droplet's lowest point at 80 um
+    3: '''  - {shape: box, kind: wall, material: steel, min: [0, 0, 0], max: [3.2e-4, 3.2e-4, 2.0e-4], layers: 3}
+  - {shape: box, kind: solid, material: steel, min: [0, 0, 0], max: [3.2e-4, 3.2e-4, 2.0e-5]}
+  - {shape: powder_bed, kind: grain, material: steel, min: [0, 0, 2.0e-5], max: [3.2e-4, 3.2e-4, 7.8e-5],
+     distribution: lognormal, grain_radius: 1.1e-5, log_sd: 0.2, grain_radius_min: 8.0e-6,
+     grain_radius_max: 1.6e-5, seed: 1}
+  - {shape: sphere, kind: fluid, material: binder, center: [1.6e-4, 1.6e-4, 1.2e-4], radius: 4.0e-5,
+     velocity: [0, 0, @VELOCITY@]}''',
+}
 
-DX = 2.0e-6
+# dx: 2D at 1.2 Fuchs's 1.67 um; 3D at the coarsest spacing that resolves the
+# smallest grain (8 um) by 2 dx, which keeps a run within an hour on 2 cores
+SCENE = {
+    2: {"DX": 2.0e-6, "DOMAIN": "domain: {min: [-1.0e-5, -1.0e-5], max: [3.3e-4, 2.1e-4]}",
+        "GRAVITY": "gravity: [0, -9.81]", "BOX": "320 um wide", "GRAINS": "", "NOTE": "",
+        "OUTPUT": "2.0e-6"},
+    3: {"DX": 4.0e-6, "DOMAIN": "domain: {min: [-1.6e-5, -1.6e-5, -1.6e-5], max: [3.36e-4, 3.36e-4, 2.16e-4]}",
+        "GRAVITY": "gravity: [0, 0, -9.81]", "BOX": "320 x 320 x 200 um", "GRAINS": "486 ",
+        "NOTE": "\n# dx = 4 um, the coarsest that resolves the smallest grain by 2 dx.",
+        "OUTPUT": "2.5e-6"},
+}
+# the end of the run: in 3D that of Fuchs's figures, 0.1 ms at 1 m/s and 0.05
+# ms at 10 m/s (the 2D slices all run to 0.1 ms)
+END = {(2, 1): 1.0e-4, (2, 10): 1.0e-4, (2, 50): 1.0e-4, (3, 1): 1.0e-4, (3, 10): 5.0e-5}
+
 GRAIN_RADIUS = 1.1e-5   # m, the bed's median grain
 STEEL = 7430.0          # kg/m^3
 BINDER = 1000.0
 
 
-def settings(speed):
+def settings(speed, dim):
+    scene = SCENE[dim]
+    dx = scene["DX"]
     # twenty times the impact speed (the water-hammer pressure rho c v of the
     # impact compresses by v / c), and ten times the capillary speed of a
     # particle, sqrt(sigma / (rho dx)): at 1 m/s with ten times that of the
     # droplet, sqrt(sigma / (rho R)), binder particles flung off the contact
     # lines at 17 m/s were pressed by 37% at 23 us
-    sound = max(20.0 * speed, 10.0 * math.sqrt(0.5 / (BINDER * DX)))
-    grain_mass = math.pi * GRAIN_RADIUS ** 2 * STEEL        # per metre of depth
-    stiffness = grain_mass * speed ** 2 / (2 * (0.5 * DX) ** 2)
-    particle_mass = STEEL * DX ** 2
+    capillary = math.sqrt(0.5 / (BINDER * dx))
+    sound = max(20.0 * speed, 10.0 * capillary)
+    # per metre of depth in 2D
+    grain_mass = (math.pi * GRAIN_RADIUS ** 2 if dim == 2 else 4.0 / 3.0 * math.pi * GRAIN_RADIUS ** 3) * STEEL
+    stiffness = grain_mass * speed ** 2 / (2 * (0.5 * dx) ** 2)
+    particle_mass = STEEL * dx ** dim
     damping = 0.5 * 2.0 * math.sqrt(stiffness * particle_mass)
     # the barrier stops a binder pair (reduced mass m / 2) closing at twice
     # the droplet's or a particle's capillary speed within dx/8 (at dx/4,
     # spray pairs at the walls closed to 0.3 dx at 10 m/s)
-    closing = 2 * max(speed, math.sqrt(0.5 / (BINDER * DX)))
-    barrier = 0.25 * BINDER * DX ** 2 * closing ** 2 / (0.125 * DX) ** 2
-    return {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound:.3g}",
-            "STEEL_SOUND": f"{sound * math.sqrt(BINDER / STEEL):.3g}",
-            "STIFFNESS": f"{stiffness:.3g}", "DAMPING": f"{damping:.3g}", "BARRIER": f"{barrier:.3g}"}
+    closing = 2 * max(speed, capillary)
+    barrier = 0.25 * BINDER * dx ** dim * closing ** 2 / (0.125 * dx) ** 2
+    values = {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound:.3g}",
+              "STEEL_SOUND": f"{sound * math.sqrt(BINDER / STEEL):.3g}", "CAPILLARY": f"{capillary:.2g}",
+              "STIFFNESS": f"{stiffness:.3g}", "DAMPING": f"{damping:.3g}", "BARRIER": f"{barrier:.3g}",
+              "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{END[dim, speed]:.1e}"}
+    return scene | {"DX": f"{dx:.1e}"} | values
 
 
 def main():
     root = pathlib.Path(__file__).resolve().parent.parent
-    for speed in (1, 10, 50):
-        text = TEMPLATE
-        for key, value in settings(speed).items():
+    for (dim, speed) in END:
+        text = TEMPLATE.replace("@GEOMETRY@", GEOMETRY[dim])
+        for key, value in settings(speed, dim).items():
             text = text.replace("@" + key + "@", value)
-        (root / "cases" / "am" / f"binder_jetting_{speed}ms_2d.yaml").write_text(text)
+        text = re.sub(r"e-0(\d)", r"e-\1", text)   # 2.0e-6, not 2.0e-06
+        (root / "cases" / "am" / f"binder_jetting_{speed}ms_{dim}d.yaml").write_text(text)
 
 
 if __name__ == "__main__":
