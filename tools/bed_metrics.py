@@ -148,9 +148,9 @@ def main():
     r |= {"on_walls": np.sum(on_wall), "depth_um": (xf[:, up].min() - substrate_top) * um}
     if on_wall.any():
         r["wall_climb_um"] = (xf[on_wall, up].max() - substrate_top) * um
-    climb = f", highest {(xf[on_wall, up].max() - substrate_top) * um:.1f} um above the substrate" if on_wall.any() else ""
+    climb = f", highest {r['wall_climb_um']:.1f} um above the substrate" if on_wall.any() else ""
     print(f"walls: {np.sum(on_wall)} fluid particles within 2 dx of the side walls{climb}")
-    print(f"depth: lowest fluid particle {(xf[:, up].min() - substrate_top) * um:.1f} um above the substrate")
+    print(f"depth: lowest fluid particle {r['depth_um']:.1f} um above the substrate")
     packing = packing_under_drop(first, (first, last), substrate_top)
     r |= {"packing_under_drop_start": packing[0], "packing_under_drop_end": packing[1]}
     print(f"packing: grains fill {packing[0]:.3f} -> {packing[1]:.3f} of the column under the droplet")
