@@ -8,7 +8,9 @@
 Prints, at the last snapshot against the first:
   grains        how many grains moved more than dx (centre of mass of the grain's
                 particles), the median and largest displacement, and how many rose
-                by more than dx (lifted off the bed);
+                by more than dx (lifted off the bed), and how many of those the fluid never
+                touched (no fluid particle within 1.5 dx of one of theirs in any snapshot:
+                lifted through the bed's contacts, not by the liquid);
   fastest       the largest speed of a fluid particle, and how many are faster
                 than --speed m/s;
   spread        the span along each horizontal axis of the fluid particles that touch
@@ -73,6 +75,17 @@ def grain_centres(s):
     return centres
 
 
+def touched_grains(s, reach):
+    """The grains with a particle within `reach` of a fluid particle in snapshot s."""
+    fluid, x = s["kind"] == FLUID, s["position"]
+    if not fluid.any():
+        return set()
+    lo, hi = x[fluid].min(axis=0) - reach, x[fluid].max(axis=0) + reach
+    grain = (s["kind"] == GRAIN) & np.all((x >= lo) & (x <= hi), axis=1)
+    near = within(x[grain], x[fluid], reach) > 0
+    return set(s["grain"][grain][near].tolist())
+
+
 def packing_under_drop(first, snapshots, substrate_top):
     """The grain particles' volume (dx^d each) over that of the column under the droplet as it
     starts in `first`, in each of `snapshots`."""
@@ -112,12 +125,14 @@ def main():
     kept = [g for g in start if g in end]
     shift = np.array([np.linalg.norm(end[g] - start[g]) for g in kept])
     rise = np.array([end[g][up] - start[g][up] for g in kept])
+    wetted = set().union(*(touched_grains(snapshot(p), 1.5 * dx) for p in paths))
+    dry = sum(1 for g, lift in zip(kept, rise) if lift > dx and g not in wetted)
     r = {"time_s": last["time"], "grains": len(kept), "grains_moved": np.sum(shift > dx),
          "displacement_median_um": np.median(shift) * um, "displacement_max_um": shift.max() * um,
-         "grains_rose": np.sum(rise > dx)}
+         "grains_rose": np.sum(rise > dx), "grains_rose_dry": dry}
     print(f"t = {last['time']:.4g} s, {len(last['kind'])} particles, {len(paths)} snapshots")
     print(f"grains: {np.sum(shift > dx)} of {len(kept)} moved > dx; displacement median {np.median(shift) * um:.1f}"
-          f" / max {shift.max() * um:.1f} um; {np.sum(rise > dx)} rose > dx")
+          f" / max {shift.max() * um:.1f} um; {np.sum(rise > dx)} rose > dx, {dry} of them never touched by the fluid")
 
     kind, x = last["kind"], last["position"][:, :dim]
     fluid = kind == FLUID
@@ -128,9 +143,7 @@ def main():
     xf = x[fluid]
     touching = within(xf, x[~fluid], 1.5 * dx) > 0
     if touching.any():
-        grain_particles = kind == GRAIN
-        near = within(x[grain_particles], xf, 1.5 * dx) > 0
-        grains_touched = set(last["grain"][grain_particles][near].tolist())
+        grains_touched = touched_grains(last, 1.5 * dx)
         wet = xf[touching]
         spans = "; ".join(f"{names[a]} {wet[:, a].min() * um:.1f} to {wet[:, a].max() * um:.1f}" for a in across)
         widths = " by ".join(f"{(wet[:, a].max() - wet[:, a].min()) * um:.1f}" for a in across)
