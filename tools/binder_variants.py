@@ -38,7 +38,7 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and with
 # a spray particle hit the wall at 60 m/s at 17.5 us (20% compression).
 # k_c stops a grain hit at the
 # droplet's speed within half a dx on two contacts, with a damping ratio
-# near 0.5.@NOTE@ Written by tools/binder_variants.py.
+# near 0.5.@NOTE@@SPLASH@ Written by tools/binder_variants.py.
 dimension: @DIM@
 @DOMAIN@
 dx: @DX@
@@ -92,6 +92,12 @@ SCENE = {
 RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.0e-6),
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
 
+# where the interface viscosity, which grows with c0, stops the splash
+SPLASH = ("\n# At this speed the interface viscosity (about alpha0 h_st c0 / (2 (d + 2)),"
+          "\n# 1e-3 m^2/s in 2D, 1.6e-3 in 3D at c0 = 1000 m/s) stops the splash that"
+          "\n# Fuchs report; with `interface_viscosity: 0` the droplet splashes onto the"
+          "\n# walls (BENCHMARKS.md, \"The binder at 50 m/s: what stops the splash\").")
+
 GRAIN_RADIUS = 1.1e-5   # m, the bed's median grain
 STEEL = 7430.0          # kg/m^3
 BINDER = 1000.0
@@ -121,7 +127,7 @@ def settings(speed, dim):
               "STEEL_SOUND": f"{sound * math.sqrt(BINDER / STEEL):.3g}", "CAPILLARY": f"{capillary:.2g}",
               "STIFFNESS": f"{stiffness:.3g}", "DAMPING": f"{damping:.3g}", "BARRIER": f"{barrier:.3g}",
               "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{RUN[dim, speed][0]:.1e}",
-              "OUTPUT": f"{RUN[dim, speed][1]:.1e}"}
+              "OUTPUT": f"{RUN[dim, speed][1]:.1e}", "SPLASH": SPLASH if speed == 50 else ""}
     return scene | {"DX": f"{dx:.1e}"} | values
 
 
