@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What a droplet did to a bed of mobile grains, from the first and last snapshots of a run
-(the binder-jetting scenes, cases/am/binder_jetting_*.yaml, Fuchs et al. 2022 Sec. 4.2), in
-2D (up is y) or 3D (up is z).
+(and, for the grains the fluid touched, every snapshot between; the binder-jetting scenes,
+cases/am/binder_jetting_*.yaml, Fuchs et al. 2022 Sec. 4.2), in 2D (up is y) or 3D (up is z).
 
     tools/bed_metrics.py OUTDIR [--speed 5] [--csv FILE]
 
@@ -125,7 +125,8 @@ def main():
     kept = [g for g in start if g in end]
     shift = np.array([np.linalg.norm(end[g] - start[g]) for g in kept])
     rise = np.array([end[g][up] - start[g][up] for g in kept])
-    wetted = set().union(*(touched_grains(snapshot(p), 1.5 * dx) for p in paths))
+    wetted = touched_grains(first, 1.5 * dx) | touched_grains(last, 1.5 * dx)
+    wetted = wetted.union(*(touched_grains(snapshot(p), 1.5 * dx) for p in paths[1:-1]))
     dry = sum(1 for g, lift in zip(kept, rise) if lift > dx and g not in wetted)
     r = {"time_s": last["time"], "grains": len(kept), "grains_moved": np.sum(shift > dx),
          "displacement_median_um": np.median(shift) * um, "displacement_max_um": shift.max() * um,
