@@ -22,7 +22,7 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and with
 # angle on the sessile cap (README): at the default 3.6 dx and without it,
 # the 1 m/s droplet slid off the centre at 2-4 m/s and flung particles off
 # its contact lines at 11 m/s. Its alpha0 = @ALPHA0@ is Fuchs's binder 1.8
-# (Table 4) times their speed of sound over ours, 100 / @SOUND_PLAIN@ (their
+# (Table 4) times their speed of sound over ours, 100 / @SOUND@ (their
 # c = sqrt(p0 / rho0) with p0 = 1e7 Pa, Sec. 4.1): the viscosity grows
 # with alpha0 c (Eq. 31), so this keeps theirs at the same h / dx (with
 # 1.8 at c0 = 1000 m/s the 50 m/s droplet did not splash; BENCHMARKS.md).
@@ -42,7 +42,7 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and with
 # a spray particle hit the wall at 60 m/s at 17.5 us (20% compression).
 # k_c stops a grain hit at the
 # droplet's speed within half a dx on two contacts, with a damping ratio
-# near 0.5.@NOTE@@SPLASH@ Written by tools/binder_variants.py.
+# near 0.5.@NOTE@@RUN_NOTE@ Written by tools/binder_variants.py.
 dimension: @DIM@
 @DOMAIN@
 dx: @DX@
@@ -97,10 +97,11 @@ SCENE = {
 RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.0e-6),
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
 
-# the 3D droplet at 50 m/s, which stops short of Fuchs's splash
-SPLASH = ("\n# At dx = 4 um this droplet does not splash as Fuchs's does (the sheet"
-          "\n# would be one or two particles thick); the 2D slice at 2 um does"
-          "\n# (BENCHMARKS.md, \"The interface viscosity at Fuchs's speed of sound\").")
+# what a case's header adds about its own run
+NOTES = {(3, 50): ("\n# At dx = 4 um this droplet does not splash as Fuchs's does (without the"
+                   "\n# interface viscosity its sheet was one or two particles thick); the 2D"
+                   "\n# slice at 2 um does (BENCHMARKS.md, \"The interface viscosity at Fuchs's"
+                   "\n# speed of sound\").")}
 
 FUCHS_SOUND = 100.0     # m/s, sqrt(p0 / rho0) of Fuchs's binder, p0 = 1e7 Pa (Sec. 4.1)
 FUCHS_ALPHA0 = 1.8      # their binder's interface viscosity (Table 4)
@@ -130,13 +131,12 @@ def settings(speed, dim):
     # spray pairs at the walls closed to 0.3 dx at 10 m/s)
     closing = 2 * max(speed, capillary)
     barrier = 0.25 * BINDER * dx ** dim * closing ** 2 / (0.125 * dx) ** 2
-    values = {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound:.3g}",
+    values = {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound_shown:g}",
               "STEEL_SOUND": f"{sound * math.sqrt(BINDER / STEEL):.3g}", "CAPILLARY": f"{capillary:.2g}",
               "STIFFNESS": f"{stiffness:.3g}", "DAMPING": f"{damping:.3g}", "BARRIER": f"{barrier:.3g}",
               "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{RUN[dim, speed][0]:.1e}",
-              "OUTPUT": f"{RUN[dim, speed][1]:.1e}", "SOUND_PLAIN": f"{sound_shown:g}",
-              "ALPHA0": f"{FUCHS_ALPHA0 * FUCHS_SOUND / sound_shown:.3g}",
-              "SPLASH": SPLASH if (dim, speed) == (3, 50) else ""}
+              "OUTPUT": f"{RUN[dim, speed][1]:.1e}", "ALPHA0": f"{FUCHS_ALPHA0 * FUCHS_SOUND / sound_shown:.3g}",
+              "RUN_NOTE": NOTES.get((dim, speed), "")}
     return scene | {"DX": f"{dx:.1e}"} | values
 
 
