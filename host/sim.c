@@ -282,6 +282,7 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->contact_pull);
     for (int k = 0; k < 2; ++k)
         amsph_buffer_free(s->backend, s->surface_blocks[k]);
+    amsph_buffer_free(s->backend, s->plain_liquid);
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)
         amsph_thermal_free(s);

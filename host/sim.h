@@ -98,6 +98,8 @@ typedef struct {
                                    (surface with grains; kernels/surface.cl surface_contact_pull) */
     amsph_buffer *surface_blocks[2]; /* an int per block of cells: the blocks' distance from the
                                         liquid (surface; kernels/surface.cl surface_blocks_*) */
+    amsph_buffer *plain_liquid;      /* one int: the liquid particles without a contact angle
+                                        (surface; kernels/surface.cl surface_blocks_mark) */
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */

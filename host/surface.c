@@ -69,7 +69,7 @@ int amsph_surface_allocate(amsph_sim *s)
     for (int k = 0; k < 2; ++k)
         AMSPH_CHECK(amsph_buffer_alloc(s->backend, (size_t)surface_block_count(p) * sizeof(int),
                                        &s->surface_blocks[k]));
-    return 0;
+    return amsph_buffer_alloc(s->backend, sizeof(int), &s->plain_liquid);
 }
 
 static amsph_arg field(amsph_sim *s, amsph_field_id f)
@@ -117,17 +117,24 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
 /* Each block's distance from the nearest liquid, in blocks (kernels/surface.cl,
  * surface_blocks_*): the liquid counted per block, then spread along each
  * axis in turn between the two block buffers; *away is the one that ends
- * with the distances. */
-static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_arg params, amsph_buffer **away)
+ * with the distances. Sets surface.plain_liquid from the count of liquid
+ * particles without a contact angle. */
+static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_buffer **away)
 {
     amsph_backend *b = s->backend;
+    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
     const int n = s->particles.n;
     const int blocks = surface_block_count(&s->surface);
     amsph_buffer *from = s->surface_blocks[0], *to = s->surface_blocks[1];
     AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", blocks, amsph_arg_buffer(from), amsph_arg_int(blocks), amsph_arg_uint(0)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", 1, amsph_arg_buffer(s->plain_liquid), amsph_arg_int(1), amsph_arg_uint(0)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_mark", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                              amsph_arg_buffer(s->materials), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
-                             params, amsph_arg_buffer(from)));
+                             params, amsph_arg_buffer(from), amsph_arg_buffer(s->plain_liquid)));
+    int plain = 0;
+    AMSPH_CHECK(amsph_download(b, s->plain_liquid, 0, sizeof plain, &plain));
+    /* near_blocks past its default (a test's pass over every particle) takes every normal too */
+    s->surface.plain_liquid = plain > 0 || s->surface.near_blocks > SURFACE_NEAR_BLOCKS;
     for (int axis = 0; axis < s->config.dim; ++axis) {
         AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_spread", blocks, amsph_arg_buffer(from), amsph_arg_int(axis),
                                  amsph_arg_int(axis == 0), grid, params, amsph_arg_buffer(to)));
@@ -144,12 +151,12 @@ int amsph_surface_forces(amsph_sim *s)
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
     const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
-    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
     const amsph_arg cells = amsph_arg_buffer(s->grid.cell);
     const amsph_arg cell_start = amsph_arg_buffer(s->grid.cell_start);
     const amsph_arg materials = amsph_arg_buffer(s->materials);
     amsph_buffer *away_buffer;
-    AMSPH_CHECK(find_liquid_blocks(s, grid, params, &away_buffer));
+    AMSPH_CHECK(find_liquid_blocks(s, grid, &away_buffer));
+    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface); /* with plain_liquid */
     const amsph_arg away = amsph_arg_buffer(away_buffer);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
@@ -157,8 +164,9 @@ int amsph_surface_forces(amsph_sim *s)
                              materials, away, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
-                             field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_MATERIAL), cells,
-                             amsph_arg_int(n), grid, cell_start, materials, away, params,
+                             field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_KIND),
+                             field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start, materials,
+                             away, params,
                              field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
                              field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
     if (s->surface.wetting)
@@ -195,8 +203,9 @@ int amsph_surface_forces(amsph_sim *s)
  * time. As a kinematic viscosity nu = alpha h_st c / (2 (d + 2)) (Monaghan
  * 2005, Rep. Prog. Phys. 68: alpha h c / 8 in 2D, / 10 in 3D) it takes
  * the fluid's viscous limit dt <= 0.125 h_st^2 / nu (Morris et al. 1997),
- * with the largest colour gradient |n| of any particle (on the 3D sessile
- * cap a wall's free face reaches |n| h_st = 2.05, the liquid 1.9) and the
+ * with the largest colour gradient |n| of any particle (the liquid's where
+ * every liquid has a contact angle, as only liquids then take a normal;
+ * beside a liquid without one, a wall's free face may reach more) and the
  * fastest sound speed c0 of the materials that carry tension. Without it
  * a sessile cap at alpha0 = 14.4 and 8.5 dx ran at four times this dt and
  * its surface jittered at 0.05 m/s (BENCHMARKS.md). */

@@ -393,11 +393,14 @@ static void test_contact_line_normal(double theta0)
 }
 
 /* The surface passes leave out the particles more than SURFACE_NEAR_BLOCKS
- * blocks from the liquid (kernels/surface.cl, blocks_from_liquid); the
- * liquid must move as it does when every particle takes part (near_blocks
- * beyond the grid). The sessile droplet's wall reaches 4 to 5 blocks past
- * the drop on each side; at theta0 = 0 the liquid's curvature sums over the
- * wall's surface normals beside it too. Fails with one block too few. */
+ * blocks from the liquid (kernels/surface.cl, blocks_from_liquid), and
+ * where every liquid has a contact angle the normals of solids and walls
+ * and the Shepard sums beyond one block; the liquid must move as it does
+ * when every particle takes part (near_blocks beyond the grid, which also
+ * gives every particle a normal). The sessile droplet's wall reaches 4 to 5
+ * blocks past the drop on each side; at theta0 = 0 the liquid's curvature
+ * sums over the wall's surface normals beside it too. Fails with one block
+ * too few. */
 static void test_passes_near_liquid(double theta0)
 {
     static const amsph_field_id fields[] = {AMSPH_FIELD_POSITION, AMSPH_FIELD_VELOCITY, AMSPH_FIELD_DENSITY,
