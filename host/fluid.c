@@ -157,6 +157,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
+    amsph_buffer *fluid_near;
+    AMSPH_CHECK(amsph_grid_find_fluid(&s->grid, b, &s->particles, &fluid_near));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY),
@@ -164,8 +166,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
-                             amsph_arg_bytes(&s->fluid, sizeof s->fluid),
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(fluid_near),
+                             amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
