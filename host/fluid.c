@@ -157,8 +157,7 @@ int amsph_fluid_density(amsph_sim *s, double dt)
 {
     amsph_backend *b = s->backend;
     const int n = s->particles.n;
-    amsph_buffer *fluid_near;
-    AMSPH_CHECK(amsph_grid_find_fluid(&s->grid, b, &s->particles, &fluid_near));
+    AMSPH_CHECK(amsph_grid_count_fluid(&s->grid, b, &s->particles));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "continuity", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY),
@@ -166,7 +165,7 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
                              amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(fluid_near),
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->grid.fluid_count),
                              amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others)));

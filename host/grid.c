@@ -60,8 +60,7 @@ int amsph_grid_init(amsph_grid *g, amsph_backend *b, int dim, const double lo[3]
     AMSPH_CHECK(amsph_buffer_alloc(b, (buckets + 1) * sizeof(int), &g->cell_start));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &g->rank));
     AMSPH_CHECK(amsph_buffer_alloc(b, AMSPH_SCAN_CHUNKS * sizeof(int), &g->chunk_total));
-    for (int k = 0; k < 2; ++k)
-        AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)g->geometry.total_cells * sizeof(int), &g->fluid_near[k]));
+    AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)g->geometry.total_cells * sizeof(int), &g->fluid_count));
     return 0;
 }
 
@@ -72,8 +71,7 @@ void amsph_grid_free(amsph_grid *g, amsph_backend *b)
     amsph_buffer_free(b, g->cell_start);
     amsph_buffer_free(b, g->rank);
     amsph_buffer_free(b, g->chunk_total);
-    for (int k = 0; k < 2; ++k)
-        amsph_buffer_free(b, g->fluid_near[k]);
+    amsph_buffer_free(b, g->fluid_count);
     for (int w = 0; w <= AMSPH_GRID_SCRATCH; ++w)
         amsph_buffer_free(b, g->scratch[w]);
     memset(g, 0, sizeof *g);
@@ -153,23 +151,12 @@ int amsph_grid_sort(amsph_grid *g, amsph_particles *p)
     return 0;
 }
 
-/* The fluid counted per cell, then spread along each axis in turn between
- * the two buffers (kernels/grid.cl); *near is the one that ends with it. */
-int amsph_grid_find_fluid(amsph_grid *g, amsph_backend *b, const amsph_particles *p, amsph_buffer **near)
+int amsph_grid_count_fluid(amsph_grid *g, amsph_backend *b, const amsph_particles *p)
 {
     const int cells = g->geometry.total_cells;
-    const amsph_arg geometry = amsph_arg_bytes(&g->geometry, sizeof g->geometry);
-    amsph_buffer *from = g->fluid_near[0], *to = g->fluid_near[1];
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", cells, amsph_arg_buffer(from), amsph_arg_int(cells), amsph_arg_uint(0)));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_fluid_mark", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
-                             amsph_arg_buffer(g->cell), amsph_arg_int(p->n), geometry, amsph_arg_buffer(from)));
-    for (int axis = 0; axis < g->dim; ++axis) {
-        AMSPH_CHECK(AMSPH_LAUNCH(b, "grid_fluid_spread", cells, amsph_arg_buffer(from), amsph_arg_int(axis), geometry,
-                                 amsph_arg_buffer(to)));
-        amsph_buffer *swap = from;
-        from = to;
-        to = swap;
-    }
-    *near = from;
-    return 0;
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", cells, amsph_arg_buffer(g->fluid_count), amsph_arg_int(cells),
+                             amsph_arg_uint(0)));
+    return AMSPH_LAUNCH(b, "grid_fluid_mark", p->n, amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]),
+                        amsph_arg_buffer(g->cell), amsph_arg_int(p->n),
+                        amsph_arg_bytes(&g->geometry, sizeof g->geometry), amsph_arg_buffer(g->fluid_count));
 }

@@ -22,7 +22,7 @@ typedef struct {
                                    grid_bin) */
     amsph_buffer *order;        /* sorted slot -> old index */
     amsph_buffer *chunk_total;  /* prefix-sum chunk totals */
-    amsph_buffer *fluid_near[2]; /* an int per cell each (amsph_grid_find_fluid) */
+    amsph_buffer *fluid_count;  /* an int per cell: its fluid particles (amsph_grid_count_fluid) */
     amsph_buffer *scratch[AMSPH_GRID_SCRATCH + 1];
     unsigned recomputed;        /* fields (bit per amsph_field_id) that the step recomputes for
                                    every particle after the sort before any kernel reads them:
@@ -47,11 +47,10 @@ int amsph_grid_check_layout(int dim, const double lo[3], const double hi[3], con
  * the sort could see). */
 int amsph_grid_sort(amsph_grid *g, amsph_particles *p);
 
-/* After a sort: *near = an int per cell, 1 where a fluid particle of p lies
- * in the box of cells that a pair loop of the support reaches from it
- * (GRID_CELLS_PER_SUPPORT each way; kernels/grid.cl grid_fluid_*), 0
- * elsewhere: kernels/neighbours.h grid_fluid_in_reach reads it. */
-int amsph_grid_find_fluid(amsph_grid *g, amsph_backend *b, const amsph_particles *p, amsph_buffer **near);
+/* After a sort: g->fluid_count = the fluid particles of p in each cell
+ * (kernels/grid.cl grid_fluid_mark), which kernels/neighbours.h
+ * grid_fluid_in_box reads. */
+int amsph_grid_count_fluid(amsph_grid *g, amsph_backend *b, const amsph_particles *p);
 
 /* out = the exclusive prefix sum of the n ints of in (kernels/grid.cl; in and
  * out may be the same buffer), with chunk_total a scratch of AMSPH_SCAN_CHUNKS ints. */

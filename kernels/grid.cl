@@ -6,7 +6,7 @@
  *   grid_order_cells  within a cell, slots ordered by global id (deterministic)
  *   gather_words    reorder a field by the permutation
  *   grid_cells_of_buckets  the sorted buckets back to cells
- *   grid_fluid_*    the cells with a fluid particle within a pair loop's reach
+ *   grid_fluid_mark the fluid particles per cell (kernels/neighbours.h grid_fluid_in_box)
  * Cells are numbered x fastest; the two last buckets collect particles that
  * left the domain and those whose position is not finite: they sort to the
  * end and the host drops them, counting each kind. */
@@ -186,32 +186,5 @@ KERNEL void grid_fluid_mark(GLOBAL const int *kind, GLOBAL const int *cell, int 
     {
         if (kind[a] == KIND_FLUID && cell[a] >= 0 && cell[a] < g.total_cells)
             ATOMIC_INC(&count[cell[a]]);
-    }
-}
-
-/* One axis of the box of a pair loop (GRID_CELLS_PER_SUPPORT cells each
- * way, kernels/neighbours.h grid_box), which separates axis by axis:
- *   out[c] = 1 where in[c + s e_axis] > 0 for some |s| <= GRID_CELLS_PER_SUPPORT,
- * c + s wrapped around a periodic axis and dropped past a closed one's
- * ends. After grid_fluid_mark and one pass per axis, out[c] = 1 where a
- * fluid particle lies in the box of cells around c. */
-KERNEL void grid_fluid_spread(GLOBAL const int *in, int axis, grid_geometry g, GLOBAL int *out)
-{
-    FOR_EACH_ITEM(c, g.total_cells)
-    {
-        int stride = 1;
-        for (int d = 0; d < axis; ++d)
-            stride *= g.ncell[d];
-        const int cells = g.ncell[axis], at = c / stride % cells;
-        int near = 0;
-        for (int s = -GRID_CELLS_PER_SUPPORT; s <= GRID_CELLS_PER_SUPPORT; ++s) {
-            int j = at + s;
-            if (g.periodic[axis])
-                j = (j % cells + cells) % cells;
-            else if (j < 0 || j >= cells)
-                continue;
-            near |= in[c + (j - at) * stride] > 0;
-        }
-        out[c] = near;
     }
 }
