@@ -230,6 +230,8 @@ static int opencl_sync(amsph_backend *b)
 static void opencl_destroy(amsph_backend *b)
 {
     opencl_state *s = b->impl;
+    if (s->queue)
+        clFinish(s->queue); /* nothing queued may outlive the context (pocl compiles at enqueue) */
     release_program(s);
     if (s->queue)
         clReleaseCommandQueue(s->queue);
