@@ -117,24 +117,21 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
 /* Each block's distance from the nearest liquid, in blocks (kernels/surface.cl,
  * surface_blocks_*): the liquid counted per block, then spread along each
  * axis in turn between the two block buffers; *away is the one that ends
- * with the distances. Sets surface.plain_liquid from the count of liquid
- * particles without a contact angle. */
-static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_buffer **away)
+ * with the distances. s->plain_liquid counts the liquid particles without
+ * a contact angle; near_blocks past its default (a test's pass over every
+ * particle) starts it at 1, so that every particle takes a normal. */
+static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_arg params, amsph_buffer **away)
 {
     amsph_backend *b = s->backend;
-    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
     const int n = s->particles.n;
     const int blocks = surface_block_count(&s->surface);
     amsph_buffer *from = s->surface_blocks[0], *to = s->surface_blocks[1];
     AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", blocks, amsph_arg_buffer(from), amsph_arg_int(blocks), amsph_arg_uint(0)));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", 1, amsph_arg_buffer(s->plain_liquid), amsph_arg_int(1), amsph_arg_uint(0)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "fill_words", 1, amsph_arg_buffer(s->plain_liquid), amsph_arg_int(1),
+                             amsph_arg_uint(s->surface.near_blocks > SURFACE_NEAR_BLOCKS)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_mark", n, field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                              amsph_arg_buffer(s->materials), amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid,
                              params, amsph_arg_buffer(from), amsph_arg_buffer(s->plain_liquid)));
-    int plain = 0;
-    AMSPH_CHECK(amsph_download(b, s->plain_liquid, 0, sizeof plain, &plain));
-    /* near_blocks past its default (a test's pass over every particle) takes every normal too */
-    s->surface.plain_liquid = plain > 0 || s->surface.near_blocks > SURFACE_NEAR_BLOCKS;
     for (int axis = 0; axis < s->config.dim; ++axis) {
         AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_blocks_spread", blocks, amsph_arg_buffer(from), amsph_arg_int(axis),
                                  amsph_arg_int(axis == 0), grid, params, amsph_arg_buffer(to)));
@@ -154,20 +151,20 @@ int amsph_surface_forces(amsph_sim *s)
     const amsph_arg cells = amsph_arg_buffer(s->grid.cell);
     const amsph_arg cell_start = amsph_arg_buffer(s->grid.cell_start);
     const amsph_arg materials = amsph_arg_buffer(s->materials);
+    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
+    const amsph_arg plain = amsph_arg_buffer(s->plain_liquid);
     amsph_buffer *away_buffer;
-    AMSPH_CHECK(find_liquid_blocks(s, grid, &away_buffer));
-    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface); /* with plain_liquid */
+    AMSPH_CHECK(find_liquid_blocks(s, grid, params, &away_buffer));
     const amsph_arg away = amsph_arg_buffer(away_buffer);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start,
-                             materials, away, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+                             materials, away, plain, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start, materials,
-                             away, params,
-                             field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
+                             away, plain, params, field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
                              field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
     if (s->surface.wetting)
         AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_wetting", n, field(s, AMSPH_FIELD_POSITION),

@@ -57,8 +57,7 @@ static inline uint visit_fold(uint fold, int a, int b, real r2, real radius, GLO
 
 /* Global ids of every b != a with |r_ab| < radius in the sets first_set
  * .. last_set (GRID_SET_*), up to max_neighbours; count[a] is the true
- * number even when the list is cut. last_set_empty[a] is what
- * grid_set_empty_near says of set last_set around a. On a grid without a
+ * number even when the list is cut. On a grid without a
  * periodic axis, box_count[a] is the number of those of set last_set that
  * FOR_EACH_IN_BOX finds, and box_order[a] 1 where it visits them in
  * the order of FOR_EACH_NEIGHBOUR_IN over that set (visit_fold); -1 and 0
@@ -69,8 +68,7 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
                            GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, real radius, int first_set, int last_set,
                            int max_neighbours, GLOBAL int *count, GLOBAL uint *neighbours,
-                           GLOBAL int *last_set_empty, GLOBAL int *box_count, GLOBAL int *box_order,
-                           GLOBAL int *within_order)
+                           GLOBAL int *box_count, GLOBAL int *box_order, GLOBAL int *within_order)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -91,7 +89,6 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
             }
         }
         count[a] = found;
-        last_set_empty[a] = grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, last_set);
         box_count[a] = -1;
         box_order[a] = 0;
         if (!grid_has_periodic_axis(&g)) {
@@ -131,13 +128,13 @@ KERNEL void neighbour_list(GLOBAL const real *position, GLOBAL const uint *id,
 
 /* near[a] = grid_fluid_in_box of particle a's cell over the support's box
  * (kernels/neighbours.h), from count (host/grid.c amsph_grid_count_fluid). */
-KERNEL void fluid_in_box(GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *count,
-                         GLOBAL int *near)
+KERNEL void fluid_in_box(GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
+                         GLOBAL const int *count, GLOBAL int *near)
 {
     FOR_EACH_ITEM(a, n)
     {
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
-        near[a] = grid_fluid_in_box(&g, count, cc, GRID_CELLS_PER_SUPPORT);
+        near[a] = grid_fluid_in_box(&g, cell_start, count, cc, GRID_CELLS_PER_SUPPORT);
     }
 }

@@ -437,10 +437,9 @@ static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL co
  * where a fluid particle lies within the support: only a fluid neighbour's
  * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
  * and such a particle loops over no neighbour: the walls, solids and grains
- * whose box of cells holds no fluid (grid_set_empty_near of the non-wall
- * set, a test per row of cells, then grid_fluid_in_box, the box's fluid
- * counts: a tank's walls far from the water, a substrate under a small melt
- * pool, a powder bed beside a droplet) cost those reads only. With the symmetric and
+ * whose box of cells holds no fluid (grid_fluid_in_box: a tank's walls far
+ * from the water, a substrate under a small melt pool, a powder bed beside
+ * a droplet) cost that test only. With the symmetric and
  * multiphase pressure forms no force reads a non-fluid particle's Gamma,
  * and it is the sum over its non-wall neighbours only: positive where a
  * fluid particle is within the support, which is what wall_state asks of it. */
@@ -458,8 +457,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         continuity_sums sums = continuity_sums_none();
         int cc[3];
         grid_cell_coords(&g, cell[a], cc);
-        if (fluid_a || (!grid_set_empty_near(&g, cell_start, cc, GRID_CELLS_PER_SUPPORT, GRID_SET_BODIES) &&
-                        grid_fluid_in_box(&g, fluid_count, cc, GRID_CELLS_PER_SUPPORT)))
+        if (fluid_a || grid_fluid_in_box(&g, cell_start, fluid_count, cc, GRID_CELLS_PER_SUPPORT))
             add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
                                 density, reference_density, smoothing_length, mass, kind, material, cell, &g,
                                 cell_start, materials, &p, &sums);

@@ -336,32 +336,15 @@ static inline int grid_box_row(const grid_geometry *g, int y, int z, int set)
     return grid_row_bucket(g, (z * g->ncell[1] + y) * g->ncell[0], set);
 }
 
-/* 1 when no particle of set `set` (GRID_SET_*) lies in the box of cells
- * within `reach` of cell cc (grid_box): one comparison per row of cells,
- * against the pair loop's set-up of its span, for the walls far from the
- * fluid, whose loops over the non-wall set would find nothing. 0 with a
- * periodic axis (not tested). */
-static inline int grid_set_empty_near(const grid_geometry *g, GLOBAL const int *cell_start, const int cc[3],
-                                      int reach, int set)
-{
-    if (grid_has_periodic_axis(g))
-        return 0;
-    int lo[3], hi[3];
-    grid_box(g, cc, reach, lo, hi);
-    for (int z = lo[2]; z <= hi[2]; ++z)
-        for (int y = lo[1]; y <= hi[1]; ++y) {
-            const int row = grid_box_row(g, y, z, set);
-            if (cell_start[row + lo[0]] != cell_start[row + hi[0] + 1])
-                return 0;
-        }
-    return 1;
-}
-
 /* Whether a fluid particle lies in the box of cells within `reach` of cell
- * cc (grid_box), from count, the fluid particles per cell (kernels/grid.cl
- * grid_fluid_mark): a pair loop of that reach from cc finds no fluid where
- * it is 0. 1 with a periodic axis (not tested). */
-static inline int grid_fluid_in_box(const grid_geometry *g, GLOBAL const int *count, const int cc[3], int reach)
+ * cc (grid_box): count holds the fluid particles per cell (kernels/grid.cl
+ * grid_fluid_mark), and a row of cells with no non-wall particle at all
+ * (GRID_SET_BODIES) is passed over after one comparison, so that the walls
+ * far from anything that moves, most of a tank's, cost a test per row. A
+ * pair loop of that reach from cc finds no fluid where it is 0. 1 with a
+ * periodic axis (not tested). */
+static inline int grid_fluid_in_box(const grid_geometry *g, GLOBAL const int *cell_start, GLOBAL const int *count,
+                                    const int cc[3], int reach)
 {
     if (grid_has_periodic_axis(g))
         return 1;
@@ -369,6 +352,9 @@ static inline int grid_fluid_in_box(const grid_geometry *g, GLOBAL const int *co
     grid_box(g, cc, reach, lo, hi);
     for (int z = lo[2]; z <= hi[2]; ++z)
         for (int y = lo[1]; y <= hi[1]; ++y) {
+            const int bodies = grid_box_row(g, y, z, GRID_SET_BODIES);
+            if (cell_start[bodies + lo[0]] == cell_start[bodies + hi[0] + 1])
+                continue;
             const int row = (z * g->ncell[1] + y) * g->ncell[0];
             for (int x = lo[0]; x <= hi[0]; ++x)
                 if (count[row + x] > 0)

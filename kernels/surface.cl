@@ -228,7 +228,7 @@ static inline int takes_surface_force(GLOBAL const int *kind, GLOBAL const int *
  * terms are those of passes over every particle, and in a scene that is
  * mostly solid (a substrate under a melt pool, a powder bed) the passes
  * cost in proportion to the melt. Where every liquid has a contact angle
- * (p.plain_liquid = 0), the curvature and its smoothing read liquid
+ * (*plain = 0, surface_blocks_mark), the curvature and its smoothing read liquid
  * normals only (shapes_curvature), so only liquid particles take a normal
  * and the Shepard sums that those normals read lie within one support of
  * the liquid, k <= near_blocks - 2; the liquid's terms are the same. */
@@ -257,8 +257,8 @@ static inline int blocks_from_liquid(GLOBAL const int *blocks_away, const grid_g
     return k < 0 ? SURFACE_FAR : blocks_away[k];
 }
 
-/* count[k] = the liquid particles in block k, *plain = those of them
- * without a contact angle (count and plain zeroed before). */
+/* count[k] = the liquid particles in block k (count zeroed before); *plain
+ * += those of them without a contact angle. */
 KERNEL void surface_blocks_mark(GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials,
                                 GLOBAL const int *cell, int n, grid_geometry g, surface_params p,
                                 GLOBAL int *count, GLOBAL int *plain)
@@ -307,18 +307,18 @@ KERNEL void surface_blocks_spread(GLOBAL const int *in, int axis, int from_count
 }
 
 /* How far from the liquid, in blocks, the Shepard sums are read (see above). */
-static inline int shepard_blocks(const surface_params *p)
+static inline int shepard_blocks(const surface_params *p, GLOBAL const int *plain)
 {
-    return p->plain_liquid ? p->near_blocks : p->near_blocks - 2;
+    return *plain > 0 ? p->near_blocks : p->near_blocks - 2;
 }
 
 /* Whether particle a takes a normal: colour 1, within near_blocks - 1 of
  * the liquid, and a liquid itself where every liquid has a contact angle. */
 static inline int takes_normal(GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials,
-                               GLOBAL const int *blocks_away, const grid_geometry *g, const surface_params *p,
-                               GLOBAL const int *cell, int a)
+                               GLOBAL const int *blocks_away, GLOBAL const int *plain, const grid_geometry *g,
+                               const surface_params *p, GLOBAL const int *cell, int a)
 {
-    return (p->plain_liquid ? colour_material(materials, material, a) : is_liquid(kind, material, materials, a)) &&
+    return (*plain > 0 ? colour_material(materials, material, a) : is_liquid(kind, material, materials, a)) &&
            blocks_from_liquid(blocks_away, g, p, cell[a]) <= p->near_blocks - 1;
 }
 
@@ -326,13 +326,13 @@ static inline int takes_normal(GLOBAL const int *kind, GLOBAL const int *materia
 KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
                             GLOBAL const real *mass, GLOBAL const int *material, GLOBAL const int *cell,
                             int n, grid_geometry g, GLOBAL const int *cell_start,
-                            GLOBAL const real *materials, GLOBAL const int *blocks_away, surface_params p,
-                            GLOBAL real *shepard)
+                            GLOBAL const real *materials, GLOBAL const int *blocks_away, GLOBAL const int *plain,
+                            surface_params p, GLOBAL real *shepard)
 {
     FOR_EACH_ITEM(a, n)
     {
         real sum = REAL(0.0);
-        if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= shepard_blocks(&p)) {
+        if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= shepard_blocks(&p, plain)) {
             int cc[3];
             real x_a[3];
             const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
@@ -370,7 +370,8 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
                            GLOBAL const real *mass, GLOBAL const real *shepard, GLOBAL const int *kind,
                            GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, GLOBAL const real *materials,
-                           GLOBAL const int *blocks_away, surface_params p, GLOBAL real *normal,
+                           GLOBAL const int *blocks_away, GLOBAL const int *plain, surface_params p,
+                           GLOBAL real *normal,
                            GLOBAL real *unit_normal, GLOBAL real *normal_weight)
 {
     FOR_EACH_ITEM(a, n)
@@ -378,7 +379,7 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         /* no normal on gas, nor far from the liquid (n_a = 0, psi_a = 0) */
-        const int has_normal = takes_normal(kind, material, materials, blocks_away, &g, &p, cell, a);
+        const int has_normal = takes_normal(kind, material, materials, blocks_away, plain, &g, &p, cell, a);
         if (has_normal) {
             int cc[3];
             real x_a[3];

@@ -27,9 +27,6 @@ typedef struct {
     int near_blocks;                 /* particles more blocks than this from the nearest liquid
                                         take no part in the surface terms (SURFACE_NEAR_BLOCKS;
                                         more: every particle takes part, and takes a normal) */
-    int plain_liquid;                /* 1: a liquid particle without a contact angle is present,
-                                        whose curvature reads the normals of solids and walls too
-                                        (kernels/surface.cl, shapes_curvature); set each step */
 } surface_params;
 
 /* A particle's Shepard sum reaches the liquid's forces through three
