@@ -166,7 +166,8 @@ static int grain_sums(amsph_sim *s, int recover_spin)
                         amsph_arg_int(recover_spin), amsph_arg_buffer(gs->records));
 }
 
-/* The grain particles' forces (the step's time is not needed). */
+/* The grain particles' forces (the step's time is not needed); after
+ * amsph_fluid_density, whose fluid counts per cell the kernel reads. */
 static int forces(amsph_sim *s, double unused_dt)
 {
     (void)unused_dt;
@@ -179,8 +180,8 @@ static int forces(amsph_sim *s, double unused_dt)
                              amsph_fluid_smoothing_length(s), field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_GRAIN),
                              amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
-                             amsph_arg_bytes(&s->fluid, sizeof s->fluid),
+                             amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->grid.fluid_count),
+                             amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              amsph_arg_bytes(&gs->params, sizeof gs->params), field(s, AMSPH_FIELD_ACCELERATION)));
     return 0;
 }

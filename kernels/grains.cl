@@ -237,7 +237,11 @@ static inline void contact_force(const real r_rb[3], real r, const real u_rb[3],
  *                         fluid_forces gives i (Fuchs Sec. 3.4.2), and
  *   the contact forces    of the particles of other grains, walls and fixed
  *                         solids closer than the contact distance.
- * The grain sums f_k = sum_r m_r a_r (Fuchs Eq. 38). */
+ * The grain sums f_k = sum_r m_r a_r (Fuchs Eq. 38). A particle whose box
+ * of cells holds no fluid (grid_fluid_in_box, fluid_count as continuity
+ * left it: most of a powder bed beside a droplet) has only contacts, and
+ * its loop reaches the contact distance only: the same cells in the same
+ * order, so the same sum bit for bit. */
 KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real *velocity,
                                   GLOBAL const real *wall_velocity, GLOBAL const real *density,
                                   GLOBAL const real *pressure, GLOBAL const real *gas_wall_pressure,
@@ -245,8 +249,8 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
                                   GLOBAL const real *liquid_fraction, GLOBAL const real *smoothing_length,
                                   GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const int *grain,
                                   GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
-                                  GLOBAL const real *materials, fluid_params fp, grain_params p,
-                                  GLOBAL real *acceleration)
+                                  GLOBAL const int *fluid_count, GLOBAL const real *materials, fluid_params fp,
+                                  grain_params p, GLOBAL real *acceleration)
 {
     FOR_EACH_ITEM(r, n)
     {
@@ -256,7 +260,8 @@ KERNEL void grain_particle_forces(GLOBAL const real *position, GLOBAL const real
             real x_r[3];
             grid_point(position, r, x_r);
             const real support = SUPPORT_OVER_H * fp.h_max;
-            const real reach = fmax(support, p.distance);
+            const int fluid_near = grid_fluid_in_box(&g, cell_start, fluid_count, cc, GRID_CELLS_PER_SUPPORT);
+            const real reach = fluid_near ? fmax(support, p.distance) : p.distance;
             real f[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_r, cell_start, reach)
             {
