@@ -98,7 +98,8 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                              field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
                              field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_CURVATURE),
                              field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
-                             amsph_arg_buffer(s->materials), away, params, amsph_arg_buffer(s->contact_pull)));
+                             amsph_arg_buffer(s->grid.fluid_count), amsph_arg_buffer(s->materials), away, params,
+                             amsph_arg_buffer(s->contact_pull)));
     double sum[4] = {0.0, 0.0, 0.0, 0.0}; /* the net pull (3) and the solids' weight */
     for (int c = 0; c < 4; ++c) {
         if (c >= s->config.dim && c < 3)
@@ -159,7 +160,8 @@ int amsph_surface_forces(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start,
-                             materials, away, plain, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+                             amsph_arg_buffer(s->grid.fluid_count), materials, away, plain, params,
+                             field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_KIND),

@@ -13,7 +13,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h);
 int amsph_surface_allocate(amsph_sim *s);
 /* Adds the surface forces to the acceleration of fluid particles, and
  * their reaction to that of grain particles (after the fluid forces and
- * the grain particles' forces, before the grains' sums). */
+ * the grain particles' forces, before the grains' sums; after the step's
+ * amsph_fluid_density, whose fluid counts per cell it reads). */
 int amsph_surface_forces(amsph_sim *s);
 /* Lowers *dt to the capillary limit 0.25 sqrt(rho h^3 / (2 pi sigma))
  * (Fuchs et al. 2022 Eq. 42; PHYSICS.md erratum 3) with the smallest
