@@ -95,6 +95,10 @@ static int lay_out_bins(amsph_sim *s)
 {
     laser_params *p = &s->laser.params;
     AMSPH_CHECK(amsph_laser_bins(&s->config, s->support, &p->lateral_nodes, &p->depth_nodes));
+    for (int k = 0; k < 2; ++k) {
+        p->lateral_first[k] = 0;
+        p->lateral_count[k] = k < s->config.dim - 1 ? p->lateral_nodes : 1;
+    }
     s->laser.columns = s->config.dim == 3 ? p->lateral_nodes * p->lateral_nodes : p->lateral_nodes;
     s->laser.nodes = s->laser.columns * p->depth_nodes;
     const size_t bytes = (size_t)s->laser.nodes * sizeof(amsph_real);
@@ -167,29 +171,72 @@ static int depth_extreme(amsph_sim *s, double sign, double *extreme)
     AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "laser_depth_extent", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n),
                              amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                             amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->laser.params, sizeof s->laser.params), amsph_arg_real(sign),
-                             amsph_arg_buffer(s->work)));
+                             amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->laser.params, sizeof s->laser.params),
+                             amsph_arg_real(sign), amsph_arg_buffer(s->work)));
     return amsph_reduce_max(s->backend, s->work, n, extreme);
 }
 
-/* The bin grid of this pass: the nodes of the whole grid (aim_beam) from
- * one above the shallowest particle under the columns to one below the
- * deepest, the same lattice, so the result is the whole grid's (rounding
- * aside) at a fraction of its nodes. */
-static int pass_grid(amsph_sim *s, laser_params *pass)
+/* The nodes first .. last (of count along an axis, node i at lo + i size)
+ * that reach the points between q_lo and q_hi, and one more on either side
+ * (a particle reaches the two nodes around it). */
+static void nodes_over(double q_lo, double q_hi, double lo, double size, int count, int *first, int *last)
+{
+    *first = (int)fmax(0.0, floor((q_lo - lo) / size) - 1.0);
+    *last = (int)fmin(count - 1.0, ceil((q_hi - lo) / size) + 1.0);
+}
+
+/* The pass's columns: along each axis across the beam, those over the
+ * domain (the range of q_k over its corners), or all of them where the
+ * axis has a part along a periodic direction. A plate narrower than the
+ * beam's window leaves the columns beside it empty. Returns the count. */
+static int lateral_columns(const amsph_case *c, laser_params *pass)
+{
+    double axis[2][3];
+    for (int d = 0; d < 3; ++d)
+        axis[0][d] = pass->across[d];
+    for (int d = 0; d < 3; ++d) /* e2 = d x e1 */
+        axis[1][d] = (double)pass->direction[(d + 1) % 3] * pass->across[(d + 2) % 3] -
+                     (double)pass->direction[(d + 2) % 3] * pass->across[(d + 1) % 3];
+    int columns = 1;
+    for (int k = 0; k < c->dim - 1; ++k) {
+        double q_lo = 0.0, q_hi = 0.0;
+        int wraps = 0;
+        for (int d = 0; d < c->dim; ++d) {
+            const double a = axis[k][d] * (c->domain_min[d] - pass->centre[d]);
+            const double b = axis[k][d] * (c->domain_max[d] - pass->centre[d]);
+            q_lo += fmin(a, b);
+            q_hi += fmax(a, b);
+            wraps |= c->periodic[d] && axis[k][d] != 0.0;
+        }
+        const double size = pass->bin_size, lo = -0.5 * (pass->lateral_nodes - 1) * size; /* q_k of column 0 */
+        int first = 0, last = pass->lateral_nodes - 1;
+        if (!wraps)
+            nodes_over(q_lo, q_hi, lo, size, pass->lateral_nodes, &first, &last);
+        pass->lateral_first[k] = first;
+        pass->lateral_count[k] = last - first + 1;
+        columns *= pass->lateral_count[k];
+    }
+    return columns;
+}
+
+/* The bin grid of this pass: the nodes of the whole grid (aim_beam) over
+ * the domain (lateral_columns) and from one above the shallowest particle
+ * under the columns to one below the deepest, the same lattice, so the
+ * result is the whole grid's (rounding aside) at a fraction of its nodes:
+ * the columns beside the domain and the nodes above and below the material
+ * would pass the irradiance on unchanged. */
+static int pass_grid(amsph_sim *s, laser_params *pass, int *columns)
 {
     *pass = s->laser.params;
     double deepest, minus_shallowest;
     AMSPH_CHECK(depth_extreme(s, 1.0, &deepest));
     AMSPH_CHECK(depth_extreme(s, -1.0, &minus_shallowest));
     int first = 0, last = 0; /* no particle under the columns: one layer above the domain */
-    if (deepest > 0.5 * LASER_NOT_UNDER) {
-        const double lo = pass->depth_lo, size = pass->bin_size;
-        first = (int)fmax(0.0, floor((-minus_shallowest - lo) / size) - 1.0);
-        last = (int)fmin(pass->depth_nodes - 1.0, ceil((deepest - lo) / size) + 1.0);
-    }
+    if (deepest > 0.5 * LASER_NOT_UNDER)
+        nodes_over(-minus_shallowest, deepest, pass->depth_lo, pass->bin_size, pass->depth_nodes, &first, &last);
     pass->depth_lo = (amsph_real)(pass->depth_lo + first * (double)pass->bin_size);
     pass->depth_nodes = last - first + 1;
+    *columns = lateral_columns(&s->config, pass);
     return 0;
 }
 
@@ -201,8 +248,9 @@ static int absorb_volumetric(amsph_sim *s)
     amsph_laser_state *l = &s->laser;
     const int n = s->particles.n;
     laser_params pass;
-    AMSPH_CHECK(pass_grid(s, &pass));
-    const int nodes = l->columns * pass.depth_nodes;
+    int columns;
+    AMSPH_CHECK(pass_grid(s, &pass, &columns));
+    const int nodes = columns * pass.depth_nodes;
     const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
     const amsph_arg params = amsph_arg_bytes(&pass, sizeof pass);
     AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", nodes, field(s, AMSPH_FIELD_POSITION),
@@ -210,8 +258,8 @@ static int absorb_volumetric(amsph_sim *s)
                              field(s, AMSPH_FIELD_MATERIAL), grid, amsph_arg_buffer(s->grid.cell_start),
                              amsph_arg_buffer(s->materials), params, amsph_arg_int(nodes),
                              amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_volume)));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", l->columns, amsph_arg_buffer(l->bin_volume),
-                             params, amsph_arg_int(l->columns), amsph_arg_buffer(l->bin_power)));
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", columns, amsph_arg_buffer(l->bin_volume),
+                             params, amsph_arg_int(columns), amsph_arg_buffer(l->bin_power)));
     return AMSPH_LAUNCH(b, "laser_gather_power", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
                         field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n), grid,

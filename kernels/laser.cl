@@ -66,27 +66,28 @@ static inline void laser_bin_coords(const laser_params *p, const real q[AMSPH_DI
     u[AMSPH_DIM - 1] = (q[AMSPH_DIM - 1] - p->depth_lo) / p->bin_size;
 }
 
-/* Node indices i of node number `node` (depth index last). */
+/* Node indices i of the pass's node number `node` (depth index last). */
 static inline void laser_node_indices(const laser_params *p, int node, int i[AMSPH_DIM])
 {
     i[AMSPH_DIM - 1] = node % p->depth_nodes;
     int column = node / p->depth_nodes;
     for (int k = 0; k < AMSPH_DIM - 1; ++k) {
-        i[k] = column % p->lateral_nodes;
-        column /= p->lateral_nodes;
+        i[k] = p->lateral_first[k] + column % p->lateral_count[k];
+        column /= p->lateral_count[k];
     }
 }
 
-/* Node number of indices i, or -1 outside the bin grid. */
+/* The pass's node number of indices i, or -1 outside its nodes. */
 static inline int laser_node_number(const laser_params *p, const int i[AMSPH_DIM])
 {
     if (i[AMSPH_DIM - 1] < 0 || i[AMSPH_DIM - 1] >= p->depth_nodes)
         return -1;
     int column = 0;
     for (int k = AMSPH_DIM - 2; k >= 0; --k) {
-        if (i[k] < 0 || i[k] >= p->lateral_nodes)
+        const int j = i[k] - p->lateral_first[k];
+        if (j < 0 || j >= p->lateral_count[k])
             return -1;
-        column = column * p->lateral_nodes + i[k];
+        column = column * p->lateral_count[k] + j;
     }
     return i[AMSPH_DIM - 1] + p->depth_nodes * column;
 }
@@ -213,12 +214,12 @@ KERNEL void laser_absorb_columns(GLOBAL const real *bin_volume, laser_params p, 
 {
     FOR_EACH_ITEM(column, columns)
     {
+        int i[AMSPH_DIM];
+        laser_node_indices(&p, p.depth_nodes * column, i);
         real r2 = REAL(0.0);
-        int rest = column;
         for (int k = 0; k < AMSPH_DIM - 1; ++k) {
-            const real q = ((real)(rest % p.lateral_nodes) - laser_axis_index(&p)) * p.bin_size;
+            const real q = ((real)i[k] - laser_axis_index(&p)) * p.bin_size;
             r2 += q * q;
-            rest /= p.lateral_nodes;
         }
 #if AMSPH_DIM == 3
         const real area = p.bin_size * p.bin_size;

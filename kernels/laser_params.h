@@ -10,8 +10,12 @@
  *   q_k = (i_k - (lateral_nodes - 1) / 2) bin_size,  i_k = 0 .. lateral_nodes - 1,
  *   q_d = depth_lo + i_d bin_size,                    i_d = 0 .. depth_nodes - 1,
  * so the middle column lies on the axis and node i_d = 0 is above the
- * whole domain. Node index: i_d + depth_nodes * column, column = i_0 (+
- * lateral_nodes * i_1 in 3D): a column's nodes are contiguous. */
+ * whole domain. A pass of the absorption lays its nodes over part of that
+ * grid: the columns i_k = lateral_first[k] .. lateral_first[k] +
+ * lateral_count[k] - 1 and depth_nodes from depth_lo (the host's laser
+ * state keeps the whole grid: 0 and lateral_nodes). Node index: i_d +
+ * depth_nodes * column, column = i_0 - lateral_first[0] (+ lateral_count[0]
+ * (i_1 - lateral_first[1]) in 3D): a column's nodes are contiguous. */
 #ifndef AMSPH_LASER_PARAMS_H
 #define AMSPH_LASER_PARAMS_H
 
@@ -34,6 +38,8 @@ typedef struct {
     AMSPH_SHARED_REAL absorption;     /* volumetric: alpha, 1/m; surface: zeta */
     AMSPH_SHARED_REAL surface_delta;  /* surface: delta = this |grad Gamma| (flat_face_delta) */
     int lateral_nodes;                /* nodes across the beam per lateral axis (odd) */
+    int lateral_first[2];             /* the pass's first column index per lateral axis */
+    int lateral_count[2];             /* the pass's columns per lateral axis */
     int depth_nodes;                  /* nodes along the beam */
 } laser_params;
 

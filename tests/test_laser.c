@@ -22,15 +22,16 @@ static int parse(const char *text, amsph_case *c)
     return status;
 }
 
+/* The run and material lines of this file's cases. */
+#define CASE_RUN_AND_STEEL "end_time: 1\noutput_interval: 1\nmaterials: [{name: steel, density: 8000}]\n"
+
 /* ---- schedule and path ---------------------------------------------------- */
 
 static const char *schedule_case =
     "dimension: 3\n"
     "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
     "dx: 0.1\n"
-    "end_time: 1\n"
-    "output_interval: 1\n"
-    "materials: [{name: steel, density: 8000}]\n"
+    CASE_RUN_AND_STEEL
     "geometry: [{shape: box, kind: solid, material: steel, min: [0, 0, 0], max: [1, 1, 0.5]}]\n"
     "laser:\n"
     "  power: 100\n"
@@ -233,9 +234,7 @@ static const char *random_case_2d =
     "dimension: 2\n"
     "domain: {min: [0, 0], max: [1, 1]}\n"
     "dx: 0.02\n"
-    "end_time: 1\n"
-    "output_interval: 1\n"
-    "materials: [{name: steel, density: 8000}]\n"
+    CASE_RUN_AND_STEEL
     "geometry: [{shape: box, kind: solid, material: steel, min: [0.1, 0.1], max: [0.9, 0.7]}]\n"
     "laser: {power: 100, radius: 0.08, absorption_coefficient: 4, direction: [0.4, -1], start: [0.45, 0.7]}\n";
 
@@ -243,12 +242,30 @@ static const char *random_case_3d =
     "dimension: 3\n"
     "domain: {min: [0, 0, 0], max: [1, 1, 1], periodic: [true, false, false]}\n"
     "dx: 0.04\n"
-    "end_time: 1\n"
-    "output_interval: 1\n"
-    "materials: [{name: steel, density: 8000}]\n"
+    CASE_RUN_AND_STEEL
     "geometry: [{shape: box, kind: solid, material: steel, min: [0, 0.1, 0.1], max: [1, 0.9, 0.7]}]\n"
     "laser: {power: 100, radius: 0.12, absorption_coefficient: 3, direction: [0, 0.3, -1],\n"
     "        start: [-2.95, 0.5, 0.7], bin_size: 0.03}\n";
+
+/* Beams whose window (3 radii) reaches past the closed domain on every
+ * side: the passes lay their columns over the domain only, the reference
+ * over the whole window. */
+static const char *wide_case_2d =
+    "dimension: 2\n"
+    "domain: {min: [0, 0], max: [1, 1]}\n"
+    "dx: 0.02\n"
+    CASE_RUN_AND_STEEL
+    "geometry: [{shape: box, kind: solid, material: steel, min: [0, 0.1], max: [1, 0.7]}]\n"
+    "laser: {power: 100, radius: 0.5, absorption_coefficient: 4, direction: [0, -1], start: [0.45, 0.7]}\n";
+
+static const char *wide_case_3d =
+    "dimension: 3\n"
+    "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+    "dx: 0.04\n"
+    CASE_RUN_AND_STEEL
+    "geometry: [{shape: box, kind: solid, material: steel, min: [0, 0, 0.1], max: [1, 1, 0.7]}]\n"
+    "laser: {power: 100, radius: 0.4, absorption_coefficient: 3, direction: [0.2, 0.3, -1],\n"
+    "        start: [0.3, 0.5, 0.7], bin_size: 0.03}\n";
 
 /* Largest |laser_power - reference| over the particles, relative to the
  * largest reference value; laser_power by particle id into by_id. */
@@ -523,6 +540,8 @@ int main(void)
     test_bins_too_large();
     test_reference(random_case_2d, "random 2D");
     test_reference(random_case_3d, "random 3D, periodic seam");
+    test_reference(wide_case_2d, "random 2D, window past the domain");
+    test_reference(wide_case_3d, "random 3D, window past the domain");
     test_slab("laser_slab_2d.yaml", 1.0);
     test_slab("laser_slab_2d.yaml", 0.27);
     test_slab("laser_slab_3d.yaml", 1.0);
