@@ -300,15 +300,10 @@ static inline int grid_stretch_end(int first, int end)
  * candidates lie within, in no order a branch predictor can follow, and a
  * branch on each would be mispredicted about every third time. The body
  * computes r_ab itself (grid_displacement) and may `continue`, not `break`.
- * A self of -1 leaves no particle out.
  *   FOR_EACH_NEIGHBOUR_WITHIN(b, run, &g, cc, x, cell_start, position, self, radius) { ... } */
 #define FOR_EACH_NEIGHBOUR_WITHIN(b, run, g, cc, x, cell_start, position, self, radius)           \
-    FOR_EACH_NEIGHBOUR_WITHIN_REACH(b, run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, position, self, radius)
-
-/* The same loop over the cells within `reach` (<= GRID_MAX_REACH) of cell
- * cc, for a radius past the kernel support (the surface terms'). */
-#define FOR_EACH_NEIGHBOUR_WITHIN_REACH(b, run, g, cc, x, cell_start, reach, position, self, radius) \
-    FOR_EACH_RUN_IN(run, g, cc, x, cell_start, reach, radius, GRID_SET_BODIES, GRID_SET_WALLS)     \
+    FOR_EACH_RUN_IN(run, g, cc, x, cell_start, GRID_CELLS_PER_SUPPORT, radius, GRID_SET_BODIES,     \
+                    GRID_SET_WALLS)                                                                \
     for (int nb_first_ = run.first; nb_first_ < run.end; nb_first_ += GRID_CANDIDATES)            \
         for (grid_within nb_w_, *nb_list_ = grid_gather_within(run.point, (position), nb_first_,    \
                                                                grid_stretch_end(nb_first_, run.end), \

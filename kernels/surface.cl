@@ -81,29 +81,21 @@ static inline real surface_tension(GLOBAL const real *materials, int material, r
     return sigma;
 }
 
+/* Squared support radius of the surface terms: farther pairs add nothing,
+ * and most of the (2 reach + 1)^d cells' particles are farther. */
+static inline real surface_support2(const surface_params *p)
+{
+    return SUPPORT_OVER_H * SUPPORT_OVER_H * p->h * p->h;
+}
+
 /* The centre of particle a's loop over its surface support: its cell's
- * coordinates cc and its position x. */
-static inline void surface_loop_centre(const grid_geometry *g, GLOBAL const int *cell, GLOBAL const real *position,
-                                       int a, int cc[3], real x[3])
+ * coordinates cc and its position x; returns the squared support radius. */
+static inline real surface_loop_centre(const grid_geometry *g, const surface_params *p, GLOBAL const int *cell,
+                                       GLOBAL const real *position, int a, int cc[3], real x[3])
 {
     grid_cell_coords(g, cell[a], cc);
     grid_point(position, a, x);
-}
-
-/* Loop b over the particles within the surface support SUPPORT_OVER_H h_st
- * of the loop's centre (surface_loop_centre), the centre's own particle
- * too, for the surface_params p: the loop of kernels/neighbours.h that lists
- * each stretch's candidates within the support before the body sees them,
- * over the p.reach cells around cc. */
-#define FOR_EACH_IN_SURFACE_SUPPORT(b, run, g, cc, x, cell_start, position, p)                     \
-    FOR_EACH_NEIGHBOUR_WITHIN_REACH(b, run, g, cc, x, cell_start, (p).reach, position, -1,         \
-                                    SUPPORT_OVER_H * (p).h)
-
-/* r_ab of the loop's pair (grid_displacement); returns |r_ab|^2. */
-static inline real surface_pair(const grid_run *run, GLOBAL const real *position, int b, real r_ab[3])
-{
-    grid_displacement(run, position, b, r_ab);
-    return dot3(r_ab, r_ab);
+    return surface_support2(p);
 }
 
 /* The linear transition function f[x, x1, x2] of Fuchs et al. 2022 Eq. 21:
@@ -360,14 +352,15 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
         real sum = REAL(0.0);
         int cc[3];
         real x_a[3];
-        surface_loop_centre(&g, cell, position, a, cc, x_a);
+        const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
         if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= shepard_blocks(&p, plain) &&
             (*plain > 0 || fluid_within_support(&g, cell_start, fluid_count, &p, cc))) {
-            FOR_EACH_IN_SURFACE_SUPPORT(b, run, &g, cc, x_a, cell_start, position, p)
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
-                real r_ab[3];
-                if (colour_material(materials, material, b))
-                    sum += smoothing_w(sqrt(surface_pair(&run, position, b, r_ab)), p.h) * mass[b] / density[b];
+                real r_ab[3], r2;
+                if (colour_material(materials, material, b) &&
+                    grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
             }
         }
         shepard[a] = sum;
@@ -409,14 +402,14 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         if (has_normal) {
             int cc[3];
             real x_a[3];
-            surface_loop_centre(&g, cell, position, a, cc, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             const real inv_gamma_a = REAL(1.0) / shepard[a];
-            FOR_EACH_IN_SURFACE_SUPPORT(b, run, &g, cc, x_a, cell_start, position, p)
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
-                if (!colour_material(materials, material, b))
+                real r_ab[3], r2;
+                if (!colour_material(materials, material, b) ||
+                    !grid_pair_within(&run, position, b, support2, r_ab, &r2))
                     continue;
-                real r_ab[3];
-                const real r2 = surface_pair(&run, position, b, r_ab);
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
                 const real v_b = mass[b] / density[b];
                 const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
@@ -470,14 +463,15 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
         if (theta0 > REAL(0.0) && normal_weight[a] > REAL(0.0)) {
             int cc[3];
             real x_a[3];
-            surface_loop_centre(&g, cell, position, a, cc, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             const real v_a = mass[a] / density[a];
             real c_sf = REAL(0.0);
             real grad_sf[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, outward[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-            FOR_EACH_IN_SURFACE_SUPPORT(b, run, &g, cc, x_a, cell_start, position, p)
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
-                real r_ab[3];
-                const real r2 = surface_pair(&run, position, b, r_ab);
+                real r_ab[3], r2;
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
                 const real r = sqrt(r2), v_b = mass[b] / density[b];
                 if (kind[b] == KIND_FLUID) {
                     for (int d = 0; d < 3; ++d)
@@ -526,14 +520,15 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
         if (normal_weight[a] > REAL(0.0) && blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 2) {
             int cc[3];
             real x_a[3];
-            surface_loop_centre(&g, cell, position, a, cc, x_a);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             real gamma_star = REAL(0.0), divergence = REAL(0.0);
-            FOR_EACH_IN_SURFACE_SUPPORT(b, run, &g, cc, x_a, cell_start, position, p)
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 if (normal_weight[b] <= REAL(0.0) || !shapes_curvature(theta0, kind[b]))
                     continue;
-                real r_ab[3];
-                const real r2 = surface_pair(&run, position, b, r_ab);
+                real r_ab[3], r2;
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
                 const real r = sqrt(r2);
                 const real v_b = normal_weight[b] * mass[b] / density[b];
                 real n_ba[3];
@@ -660,11 +655,12 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
         if (is_liquid(kind, material, materials, a)) {
             int cc[3];
             real x_a[3];
-            surface_loop_centre(&g, cell, position, a, cc, x_a);
-            FOR_EACH_IN_SURFACE_SUPPORT(b, run, &g, cc, x_a, cell_start, position, p)
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
-                real r_ab[3];
-                const real r2 = surface_pair(&run, position, b, r_ab);
+                real r_ab[3], r2;
+                if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
                 const real r = sqrt(r2);
                 const real alpha_ab =
                     interface_viscosity_pair_alpha(kind, material, materials, normal, &p, alpha_a, a, b);
@@ -789,14 +785,14 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
         } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2) {
             int cc[3];
             real x_r[3];
-            surface_loop_centre(&g, cell, position, i, cc, x_r);
+            const real support2 = surface_loop_centre(&g, &p, cell, position, i, cc, x_r), support = sqrt(support2);
             if (fluid_within_support(&g, cell_start, fluid_count, &p, cc)) {
-                FOR_EACH_IN_SURFACE_SUPPORT(a, run, &g, cc, x_r, cell_start, position, p)
+                FOR_EACH_NEIGHBOUR_NEAR(a, run, &g, cc, x_r, cell_start, p.reach, support)
                 {
-                    if (!takes_surface_force(kind, material, materials, shepard, &p, a))
+                    real r_ra[3], r2, n_hat[3];
+                    if (!takes_surface_force(kind, material, materials, shepard, &p, a) ||
+                        !grid_pair_within(&run, position, a, support2, r_ra, &r2))
                         continue;
-                    real r_ra[3], n_hat[3];
-                    const real r2 = surface_pair(&run, position, a, r_ra);
                     stress_normal(normal, unit_normal, normal_weight, a, n_hat);
                     /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
                     const real share = tension[a] * normal_size(normal, a) * mass[a] / density[a] * v_i *
