@@ -95,13 +95,13 @@ static int lay_out_bins(amsph_sim *s)
 {
     laser_params *p = &s->laser.params;
     AMSPH_CHECK(amsph_laser_bins(&s->config, s->support, &p->lateral_nodes, &p->depth_nodes));
-    for (int k = 0; k < 2; ++k) {
+    size_t nodes = (size_t)p->depth_nodes;
+    for (int k = 0; k < 2; ++k) { /* the whole grid; each pass takes part of it (pass_grid) */
         p->lateral_first[k] = 0;
         p->lateral_count[k] = k < s->config.dim - 1 ? p->lateral_nodes : 1;
+        nodes *= (size_t)p->lateral_count[k];
     }
-    s->laser.columns = s->config.dim == 3 ? p->lateral_nodes * p->lateral_nodes : p->lateral_nodes;
-    s->laser.nodes = s->laser.columns * p->depth_nodes;
-    const size_t bytes = (size_t)s->laser.nodes * sizeof(amsph_real);
+    const size_t bytes = nodes * sizeof(amsph_real);
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_weight));
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_volume));
     return amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_power);

@@ -78,7 +78,6 @@ typedef struct {
 /* The laser module's state (host/laser.h). */
 typedef struct {
     laser_params params;      /* the beam at the last absorption */
-    int columns, nodes;       /* bin columns and nodes (volumetric absorption) */
     amsph_buffer *bin_weight; /* per node: sum of PIC weights */
     amsph_buffer *bin_volume; /* per node: sum of weighted particle volumes, m^3 (2D: m^2) */
     amsph_buffer *bin_power;  /* per node: absorbed power, W (2D: W/m) */

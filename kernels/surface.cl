@@ -326,14 +326,16 @@ static inline int takes_normal(GLOBAL const int *kind, GLOBAL const int *materia
            blocks_from_liquid(blocks_away, g, p, cell[a]) <= p->near_blocks - 1;
 }
 
-/* Whether a fluid particle lies in the box of cells of particle a's
- * surface support (cc its cell): the grid's fluid counts, which the step's
+/* Whether a fluid particle lies in the box of cells of the surface
+ * support around cell `cell`: the grid's fluid counts, which the step's
  * continuity pass has made (kernels/neighbours.h grid_fluid_in_box). The
- * fluid holds the liquid, so where this is 0 no liquid is within a's
- * support. */
+ * fluid holds the liquid, so where this is 0 no liquid is within the
+ * support of a particle in that cell. */
 static inline int fluid_within_support(const grid_geometry *g, GLOBAL const int *cell_start,
-                                       GLOBAL const int *fluid_count, const surface_params *p, const int cc[3])
+                                       GLOBAL const int *fluid_count, const surface_params *p, int cell)
 {
+    int cc[3];
+    grid_cell_coords(g, cell, cc);
     return grid_fluid_in_box(g, cell_start, fluid_count, cc, p->reach);
 }
 
@@ -350,11 +352,11 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
     FOR_EACH_ITEM(a, n)
     {
         real sum = REAL(0.0);
-        int cc[3];
-        real x_a[3];
-        const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
         if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= shepard_blocks(&p, plain) &&
-            (*plain > 0 || fluid_within_support(&g, cell_start, fluid_count, &p, cc))) {
+            (*plain > 0 || fluid_within_support(&g, cell_start, fluid_count, &p, cell[a]))) {
+            int cc[3];
+            real x_a[3];
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 real r_ab[3], r2;
@@ -782,25 +784,24 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
         if (takes_surface_force(kind, material, materials, shepard, &p, i)) {
             for (int d = 0; d < 3; ++d)
                 force[d] = -tension[i] * curvature[i] * v_i * normal[3 * i + d];
-        } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2) {
+        } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2 &&
+                   fluid_within_support(&g, cell_start, fluid_count, &p, cell[i])) {
             int cc[3];
             real x_r[3];
             const real support2 = surface_loop_centre(&g, &p, cell, position, i, cc, x_r), support = sqrt(support2);
-            if (fluid_within_support(&g, cell_start, fluid_count, &p, cc)) {
-                FOR_EACH_NEIGHBOUR_NEAR(a, run, &g, cc, x_r, cell_start, p.reach, support)
-                {
-                    real r_ra[3], r2, n_hat[3];
-                    if (!takes_surface_force(kind, material, materials, shepard, &p, a) ||
-                        !grid_pair_within(&run, position, a, support2, r_ra, &r2))
-                        continue;
-                    stress_normal(normal, unit_normal, normal_weight, a, n_hat);
-                    /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
-                    const real share = tension[a] * normal_size(normal, a) * mass[a] / density[a] * v_i *
-                                       smoothing_grad_factor(sqrt(r2), p.h);
-                    const real along = dot3(n_hat, r_ra);
-                    for (int d = 0; d < 3; ++d)
-                        force[d] += share * (r_ra[d] - along * n_hat[d]);
-                }
+            FOR_EACH_NEIGHBOUR_NEAR(a, run, &g, cc, x_r, cell_start, p.reach, support)
+            {
+                real r_ra[3], r2, n_hat[3];
+                if (!takes_surface_force(kind, material, materials, shepard, &p, a) ||
+                    !grid_pair_within(&run, position, a, support2, r_ra, &r2))
+                    continue;
+                stress_normal(normal, unit_normal, normal_weight, a, n_hat);
+                /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
+                const real share = tension[a] * normal_size(normal, a) * mass[a] / density[a] * v_i *
+                                   smoothing_grad_factor(sqrt(r2), p.h);
+                const real along = dot3(n_hat, r_ra);
+                for (int d = 0; d < 3; ++d)
+                    force[d] += share * (r_ra[d] - along * n_hat[d]);
             }
         }
         for (int d = 0; d < 3; ++d)
