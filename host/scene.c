@@ -247,20 +247,32 @@ static int occupied_build(const amsph_case *c, const amsph_host_particles *h, in
 /* Which particles count in occupied_find: partner(ctx, j) for particle j of h. */
 typedef int (*occupied_partner)(const void *ctx, int j);
 
+/* The cells that a ball of radius `reach` about x touches, first[d] to
+ * last[d] along each axis (widened by 1e-9 of a cell against rounding):
+ * one or two along an axis for a reach under half a cell, so a point on
+ * the lattice of the particles before it looks into one bucket, not 27. */
+static void occupied_reach(const occupied *o, const double x[3], double reach, long long first[3],
+                           long long last[3])
+{
+    const double margin = reach + 1e-9 * o->size;
+    for (int d = 0; d < 3; ++d) {
+        first[d] = d < o->dim ? (long long)floor((x[d] - margin - o->lo[d]) / o->size) : 0;
+        last[d] = d < o->dim ? (long long)floor((x[d] + margin - o->lo[d]) / o->size) : 0;
+    }
+}
+
 /* The index in h of a particle within `clearance` dx of x that `partner`
  * accepts (any, without one), or -1. */
 static int occupied_find(const occupied *o, const double x[3], double clearance, occupied_partner partner,
                          const void *ctx)
 {
     const double reach2 = clearance * clearance * o->size * o->size;
-    const int m = (int)ceil(clearance); /* cells of dx each side */
-    long long cc[3];
-    occupied_cell(o, x, cc);
-    const int lo[3] = {-m, o->dim > 1 ? -m : 0, o->dim > 2 ? -m : 0};
-    for (int k2 = lo[2]; k2 <= -lo[2]; ++k2)
-        for (int k1 = lo[1]; k1 <= -lo[1]; ++k1)
-            for (int k0 = -m; k0 <= m; ++k0) {
-                const long long k[3] = {cc[0] + k0, cc[1] + k1, cc[2] + k2};
+    long long first[3], last[3];
+    occupied_reach(o, x, clearance * o->size, first, last);
+    long long k[3];
+    for (k[2] = first[2]; k[2] <= last[2]; ++k[2])
+        for (k[1] = first[1]; k[1] <= last[1]; ++k[1])
+            for (k[0] = first[0]; k[0] <= last[0]; ++k[0]) {
                 const unsigned long long bucket = occupied_bucket(o, k);
                 for (int j = o->start[bucket]; j < o->start[bucket + 1]; ++j) {
                     const amsph_real *y = o->x + 3 * j;
