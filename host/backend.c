@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "real.h"
+#include "timers.h"
 
 int amsph_backend_openmp_create(amsph_backend **out);
 #if AMSPH_HAVE_OPENCL
@@ -135,10 +136,42 @@ int amsph_build(amsph_backend *b, const amsph_build_options *options)
     return b->iface->build(b, options);
 }
 
+/* Row of `kernel` in the profile (added if new), or NULL when the table is full. */
+static double *kernel_seconds(amsph_kernel_profile *p, const char *kernel)
+{
+    int k = 0;
+    while (k < p->count && strcmp(p->kernel[k].name, kernel) != 0)
+        ++k;
+    if (k == AMSPH_PROFILE_KERNELS) {
+        ++p->untracked;
+        return NULL;
+    }
+    if (k == p->count) {
+        snprintf(p->kernel[k].name, sizeof p->kernel[k].name, "%s", kernel);
+        ++p->count;
+    }
+    ++p->kernel[k].launches;
+    return &p->kernel[k].seconds;
+}
+
+/* A launch waited for and charged to the kernel's name (b->profile). */
+static int profiled_launch(amsph_backend *b, const char *kernel, int items, int nargs, const amsph_arg *args)
+{
+    const double start = amsph_wall_seconds();
+    AMSPH_CHECK(b->iface->launch(b, kernel, items, nargs, args));
+    AMSPH_CHECK(b->iface->sync(b));
+    double *seconds = kernel_seconds(b->profile, kernel);
+    if (seconds)
+        *seconds += amsph_wall_seconds() - start;
+    return 0;
+}
+
 int amsph_launch(amsph_backend *b, const char *kernel, int items, int nargs, const amsph_arg *args)
 {
     if (items <= 0)
         return 0;
+    if (b->profile)
+        return profiled_launch(b, kernel, items, nargs, args);
     return b->iface->launch(b, kernel, items, nargs, args);
 }
 

@@ -54,12 +54,31 @@ typedef struct {
     void (*destroy)(amsph_backend *);
 } amsph_backend_iface;
 
+/* Wall time of each kernel by name (`amsph bench throughput --kernels`).
+ * With a profile attached, amsph_launch waits for every kernel it starts
+ * and charges the time from the start to the end of that wait to the
+ * kernel's name: on a GPU the launch's own cost included, on host threads
+ * the kernel's run. */
+#define AMSPH_PROFILE_KERNELS 128
+typedef struct {
+    char name[64];
+    long long launches;
+    double seconds;
+} amsph_kernel_time;
+
+typedef struct {
+    int count;     /* kernels in the table */
+    int untracked; /* launches past a full table, not charged */
+    amsph_kernel_time kernel[AMSPH_PROFILE_KERNELS];
+} amsph_kernel_profile;
+
 struct amsph_backend {
     const amsph_backend_iface *iface;
     void *impl;
     char description[256]; /* device and platform, for logs and benchmarks */
     amsph_buffer *reduce_partial; /* scratch of the two-stage reductions */
     size_t allocated;             /* bytes in live buffers */
+    amsph_kernel_profile *profile; /* non-NULL: each launch waited for and timed */
 };
 
 /* Creates the backend named "openmp" or "opencl"; device < 0 picks the

@@ -151,7 +151,23 @@ typedef struct {
     double timed_seconds;    /* the same number of steps with the timers on */
     double device_bytes;     /* every live buffer of the backend */
     amsph_timers timers;     /* of the timed steps */
+    amsph_kernel_profile *profile; /* o->kernels: of `steps` more, each launch waited for */
+    double profiled_seconds;       /* those steps' wall time */
 } measurement;
+
+/* `steps` steps with each kernel timed (amsph_kernel_profile) into m. */
+static int profile_kernels(amsph_sim *s, int steps, measurement *m)
+{
+    m->profile = calloc(1, sizeof *m->profile);
+    if (!m->profile)
+        return amsph_fail("out of host memory");
+    s->backend->profile = m->profile;
+    const double start = amsph_wall_seconds();
+    const int status = take_steps(s, steps);
+    m->profiled_seconds = amsph_wall_seconds() - start;
+    s->backend->profile = NULL;
+    return status;
+}
 
 static int measure(amsph_backend *b, const amsph_case *c, const amsph_bench_options *o, measurement *m)
 {
@@ -171,6 +187,9 @@ static int measure(amsph_backend *b, const amsph_case *c, const amsph_bench_opti
         status = take_steps(&s, o->steps);
     m->timed_seconds = amsph_wall_seconds() - start;
     m->timers = s.timers;
+    amsph_timers_reset(&s.timers, 0);
+    if (!status && o->kernels)
+        status = profile_kernels(&s, o->steps, m);
     amsph_sim_free(&s);
     return status;
 }
@@ -233,6 +252,31 @@ static void print_csv_row(const amsph_case *c, amsph_backend *b, const measureme
     fflush(csv);
 }
 
+static int by_kernel_seconds(const void *pa, const void *pb)
+{
+    const double a = ((const amsph_kernel_time *)pa)->seconds, b = ((const amsph_kernel_time *)pb)->seconds;
+    return (a < b) - (a > b);
+}
+
+/* The kernels of one count's profiled steps, the slowest first. */
+static void print_kernels(const measurement *m, int steps, FILE *out)
+{
+    amsph_kernel_profile p = *m->profile;
+    qsort(p.kernel, (size_t)p.count, sizeof p.kernel[0], by_kernel_seconds);
+    double total = 0.0;
+    for (int k = 0; k < p.count; ++k)
+        total += p.kernel[k].seconds;
+    fprintf(out, "\nkernels at %lld particles, each launch waited for: the steps took %.3g ms each, "
+                 "the kernels %.3g ms of it\n\n| kernel | launches/step | ms/step | share of the kernels |\n"
+                 "|---|---|---|---|\n",
+            m->particles, 1e3 * m->profiled_seconds / steps, 1e3 * total / steps);
+    for (int k = 0; k < p.count; ++k)
+        fprintf(out, "| %s | %.3g | %.3g | %.1f%% |\n", p.kernel[k].name, (double)p.kernel[k].launches / steps,
+                1e3 * p.kernel[k].seconds / steps, total > 0.0 ? 100.0 * p.kernel[k].seconds / total : 0.0);
+    if (p.untracked)
+        fprintf(out, "(%d launches past the table's %d kernels not charged)\n", p.untracked, AMSPH_PROFILE_KERNELS);
+}
+
 /* Least-squares slope of log(time per step) against log(particles). */
 static double growth_exponent(const measurement *m, int count)
 {
@@ -271,6 +315,11 @@ int amsph_bench_throughput(amsph_backend *b, const amsph_case *c, const amsph_be
     if (!status && counts > 1 && m[counts - 1].particles != m[0].particles)
         fprintf(out, "\ncost growth: time per step ~ particles^%.2f (least squares over %d counts)\n",
                 growth_exponent(m, counts), counts);
+    for (int k = 0; k < counts; ++k) {
+        if (!status && m[k].profile)
+            print_kernels(&m[k], o->steps, out);
+        free(m[k].profile);
+    }
     free(m);
     return status;
 }

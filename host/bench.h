@@ -21,6 +21,7 @@ typedef struct {
     int warmup;                                  /* steps before the timing */
     int steps;                                   /* timed steps */
     FILE *csv;                                   /* non-NULL: a CSV table too */
+    int kernels;                                 /* 1: `steps` more with each kernel timed */
 } amsph_bench_options;
 
 /* Throughput of the case's time step: for each particle count, the case at
@@ -28,7 +29,9 @@ typedef struct {
  * `steps` steps timed as a whole (particle-steps per second) and `steps`
  * more with the per-phase timers on (host/timers.h: ms per step of each
  * module). Prints a Markdown table with the device bytes per particle, and
- * the least-squares exponent of time per step against the particle count. */
+ * the least-squares exponent of time per step against the particle count.
+ * With o->kernels, `steps` more with every launch waited for and timed
+ * (amsph_kernel_profile), and a table of the kernels for each count. */
 int amsph_bench_throughput(amsph_backend *b, const amsph_case *c, const amsph_bench_options *o, FILE *out);
 
 /* The compiler and precision of this build, for benchmark tables. */

@@ -47,10 +47,11 @@ static const char usage[] =
     "  bench grid [--particles N]... [--repeat R] [--backend B] [--device N]\n"
     "                      time the sorted-grid build (3D, random particles)\n"
     "  bench throughput CASE.yaml [--particles N]... [--steps S] [--warmup W] [--quick]\n"
-    "      [--csv FILE] [--backend B] [--device N]\n"
+    "      [--kernels] [--csv FILE] [--backend B] [--device N]\n"
     "                      time the case's step scaled to N particles (default: as it is):\n"
     "                      particle-steps/s, ms per module, device bytes per particle and\n"
-    "                      the growth of the step's time with N; --quick: 2 + 3 steps\n"
+    "                      the growth of the step's time with N; --quick: 2 + 3 steps;\n"
+    "                      --kernels: S more steps with each launch waited for, ms per kernel\n"
     "  --help              this text\n"
     "\n"
     "The backend and device default to the case file's, then openmp and the first\n"
@@ -72,6 +73,7 @@ typedef struct {
     int steps;  /* 0: the default */
     int warmup; /* -1: the default */
     int quick;
+    int kernels; /* bench throughput: time each kernel too */
     const char *csv;
     const char *plot;            /* analyze: PNG of the metrics over time */
     amsph_analysis_axes axes;    /* analyze */
@@ -192,6 +194,8 @@ static int parse_options(int argc, char **argv, cli_options *o)
             o->metrics = 1;
         } else if (!strcmp(a, "--quick")) {
             o->quick = 1;
+        } else if (!strcmp(a, "--kernels")) {
+            o->kernels = 1;
         } else if (!strcmp(a, "--repeat")) {
             if (parse_int_option(a, value, "a count", 1, 100000, &v))
                 return EXIT_BAD_INPUT;
@@ -417,7 +421,8 @@ static int bench_throughput(const cli_options *o, const amsph_case *c, amsph_bac
 {
     amsph_bench_options bench = {.n_particles = o->n_particles,
                                  .warmup = o->warmup >= 0 ? o->warmup : o->quick ? 2 : 5,
-                                 .steps = o->steps ? o->steps : o->quick ? 3 : 20};
+                                 .steps = o->steps ? o->steps : o->quick ? 3 : 20,
+                                 .kernels = o->kernels};
     memcpy(bench.particles, o->particles, sizeof bench.particles);
     if (o->csv && !(bench.csv = fopen(o->csv, "w")))
         return amsph_bad_input("cannot write %s: %s", o->csv, strerror(errno));

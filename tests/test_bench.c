@@ -89,6 +89,49 @@ static void test_timers(int backend)
     amsph_backend_destroy(b);
 }
 
+/* The kernel profile: five steps with every launch waited for and timed
+ * end in the same bits as five without; the kick, launched at the start
+ * and the end of each leapfrog step (host/sim.c), is counted twice a step;
+ * no launch goes uncounted, and the kernels' times add up to no more than
+ * the wall time of the steps. */
+static void test_kernel_profile(int backend)
+{
+    amsph_case c;
+    amsph_backend *b = testing_backend(backend);
+    if (!b || load_am_case(&c)) {
+        amsph_backend_destroy(b);
+        return;
+    }
+    const int steps = 5;
+    amsph_sim plain, profiled;
+    CHECK_OK(amsph_sim_create(&c, b, &plain));
+    CHECK_OK(amsph_sim_create(&c, b, &profiled));
+    CHECK_OK(take_steps(&plain, steps));
+    amsph_kernel_profile profile = {0};
+    b->profile = &profile;
+    const double start = amsph_wall_seconds();
+    CHECK_OK(take_steps(&profiled, steps));
+    const double wall = amsph_wall_seconds() - start;
+    b->profile = NULL;
+    CHECK(differing_fields(&plain, &profiled) == 0, "%s: the profile changed the state", b->description);
+    CHECK(profile.untracked == 0 && profile.count > 20, "%s: %d kernels timed, %d launches untracked",
+          b->description, profile.count, profile.untracked);
+    double sum = 0.0;
+    long long kicks = -1;
+    for (int k = 0; k < profile.count; ++k) {
+        CHECK(profile.kernel[k].launches > 0 && profile.kernel[k].seconds >= 0.0, "%s: %s: %lld launches, %g s",
+              b->description, profile.kernel[k].name, profile.kernel[k].launches, profile.kernel[k].seconds);
+        sum += profile.kernel[k].seconds;
+        if (!strcmp(profile.kernel[k].name, "kick"))
+            kicks = profile.kernel[k].launches;
+    }
+    CHECK(kicks == 2 * steps, "%s: kick launched %lld times in %d steps", b->description, kicks, steps);
+    CHECK(sum <= wall, "%s: the kernels took %g s of %g s", b->description, sum, wall);
+    amsph_sim_free(&plain);
+    amsph_sim_free(&profiled);
+    amsph_backend_destroy(b);
+}
+
 /* Splits a CSV line in place into at most `max` fields (quoted fields may
  * hold commas); returns the count. */
 static int split_csv(char *line, char **field, int max)
@@ -155,13 +198,16 @@ static void test_throughput_table(void)
     char *text = NULL, *csv_text = NULL;
     size_t text_size = 0, csv_size = 0;
     FILE *out = open_memstream(&text, &text_size);
-    amsph_bench_options o = {.particles = {1500, 3000}, .n_particles = 2, .warmup = 1, .steps = 2};
+    amsph_bench_options o = {.particles = {1500, 3000}, .n_particles = 2, .warmup = 1, .steps = 2, .kernels = 1};
     o.csv = open_memstream(&csv_text, &csv_size);
     CHECK_OK(amsph_bench_throughput(b, &c, &o, out));
     fclose(out);
     fclose(o.csv);
     CHECK(strstr(text, "| particles | ms/step | particle-steps/s |") != NULL, "no table header in:\n%s", text);
     CHECK(strstr(text, "cost growth: time per step ~ particles^") != NULL, "no growth exponent in:\n%s", text);
+    const char *kernels = strstr(text, "\nkernels at 1");
+    CHECK(kernels && strstr(kernels + 1, "\nkernels at 3"), "no kernel table for each count in:\n%s", text);
+    CHECK(kernels && strstr(kernels, "| kick | 2 | "), "no kick launched twice a step in:\n%s", text);
     char *line[3] = {csv_text};
     for (int k = 1; k < 3; ++k)
         line[k] = line[k - 1] && strchr(line[k - 1], '\n') ? strchr(line[k - 1], '\n') + 1 : NULL;
@@ -200,8 +246,10 @@ static void test_scaled_contact_distance(void)
 
 int main(void)
 {
-    for (int k = 0; k < TESTING_BACKENDS; ++k)
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
         test_timers(k);
+        test_kernel_profile(k);
+    }
     test_throughput_table();
     test_scaled_contact_distance();
     return testing_finish();

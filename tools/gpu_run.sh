@@ -107,10 +107,11 @@ run_tests() { # build, options of gpu_tests.py run...
 }
 
 # Benchmarks as in BENCHMARKS.md ("On an NVIDIA H200"): the grid sort of 1e6
-# and 1e7 random particles, and `bench throughput` (ms per step and per module)
-# of the fluid and the AM dam breaks at 1e5 and 1e6 particles on each backend,
-# at 1e7 on OpenCL; each command limited to AMSPH_GPU_BENCH_TIMEOUT seconds
-# (default 120), so that one slow size does not take the call's time.
+# and 1e7 random particles, and `bench throughput --kernels` (ms per step, per
+# module and per kernel) of the fluid and the AM dam breaks at 1e5 and 1e6
+# particles on each backend, at 1e7 on OpenCL; each command limited to
+# AMSPH_GPU_BENCH_TIMEOUT seconds (default 120), so that one slow size does
+# not take the call's time.
 run_bench() {
     local amsph=$bundle/$1/amsph limit=${AMSPH_GPU_BENCH_TIMEOUT:-120} backend scene n sizes
     echo "== bench, $1 build"
@@ -123,7 +124,7 @@ run_bench() {
         [ $backend = openmp ] || sizes="$sizes 10000000"
         for scene in cases/validation/dambreak_3d.yaml cases/bench/am_dambreak_3d.yaml; do
             for n in $sizes; do
-                timeout -k 5 "$limit" "$amsph" bench throughput $scene --particles $n --steps 10 \
+                timeout -k 5 "$limit" "$amsph" bench throughput $scene --particles $n --steps 10 --kernels \
                     --warmup 3 --backend $backend || fail "$1: bench throughput $scene $n on $backend"
             done
         done
