@@ -51,42 +51,72 @@ static int differing_fields(amsph_sim *a, amsph_sim *b)
     return differ;
 }
 
+/* The AM case twice on one backend: `plain` runs without instruments,
+ * `measured` with one (the phase timers, the kernel profile). */
+typedef struct {
+    amsph_backend *b;
+    amsph_sim plain, measured;
+} sim_pair;
+
+#define PAIR_STEPS 5
+
+/* The pair after PAIR_STEPS steps of `plain`; nonzero: nothing to test. */
+static int sim_pair_open(int backend, sim_pair *p)
+{
+    amsph_case c;
+    p->b = testing_backend(backend);
+    if (!p->b || load_am_case(&c)) {
+        amsph_backend_destroy(p->b);
+        return 1;
+    }
+    CHECK_OK(amsph_sim_create(&c, p->b, &p->plain));
+    CHECK_OK(amsph_sim_create(&c, p->b, &p->measured));
+    CHECK_OK(take_steps(&p->plain, PAIR_STEPS));
+    return 0;
+}
+
+/* PAIR_STEPS steps of `measured`, which must end in the bits of `plain`;
+ * their wall time, s. */
+static double sim_pair_measure(sim_pair *p, const char *instrument)
+{
+    const double start = amsph_wall_seconds();
+    CHECK_OK(take_steps(&p->measured, PAIR_STEPS));
+    const double wall = amsph_wall_seconds() - start;
+    CHECK(differing_fields(&p->plain, &p->measured) == 0, "%s: the %s changed the state", p->b->description,
+          instrument);
+    return wall;
+}
+
+static void sim_pair_close(sim_pair *p)
+{
+    amsph_sim_free(&p->plain);
+    amsph_sim_free(&p->measured);
+    amsph_backend_destroy(p->b);
+}
+
 /* Five steps with the timers on end in the same bits as five without; the
  * phases of the modules the case has are charged and no other, and they add
  * up to no more than the wall time of the steps. */
 static void test_timers(int backend)
 {
-    amsph_case c;
-    amsph_backend *b = testing_backend(backend);
-    if (!b || load_am_case(&c)) {
-        amsph_backend_destroy(b);
+    sim_pair p;
+    if (sim_pair_open(backend, &p))
         return;
-    }
-    const int steps = 5;
-    amsph_sim plain, timed;
-    CHECK_OK(amsph_sim_create(&c, b, &plain));
-    CHECK_OK(amsph_sim_create(&c, b, &timed));
-    CHECK_OK(take_steps(&plain, steps));
-    amsph_timers_reset(&timed.timers, 1);
-    const double start = amsph_wall_seconds();
-    CHECK_OK(take_steps(&timed, steps));
-    const double wall = amsph_wall_seconds() - start;
-    CHECK(differing_fields(&plain, &timed) == 0, "%s: the timers changed the state", b->description);
-    const amsph_timers *t = &timed.timers;
-    CHECK(t->current == AMSPH_PHASE_NONE, "%s: the step ended in phase %s", b->description,
+    amsph_timers_reset(&p.measured.timers, 1);
+    const double wall = sim_pair_measure(&p, "timers");
+    const amsph_timers *t = &p.measured.timers;
+    CHECK(t->current == AMSPH_PHASE_NONE, "%s: the step ended in phase %s", p.b->description,
           amsph_phase_names[t->current]);
     double sum = 0.0;
     for (int k = 1; k < AMSPH_PHASE_COUNT; ++k) {
-        CHECK(t->used[k], "%s: phase %s unused in a scene with every module", b->description,
+        CHECK(t->used[k], "%s: phase %s unused in a scene with every module", p.b->description,
               amsph_phase_names[k]);
-        CHECK(t->seconds[k] > 0.0, "%s: phase %s charged %g s", b->description, amsph_phase_names[k],
+        CHECK(t->seconds[k] > 0.0, "%s: phase %s charged %g s", p.b->description, amsph_phase_names[k],
               t->seconds[k]);
         sum += t->seconds[k];
     }
-    CHECK(sum <= wall, "%s: the phases took %g s of %g s", b->description, sum, wall);
-    amsph_sim_free(&plain);
-    amsph_sim_free(&timed);
-    amsph_backend_destroy(b);
+    CHECK(sum <= wall, "%s: the phases took %g s of %g s", p.b->description, sum, wall);
+    sim_pair_close(&p);
 }
 
 /* The kernel profile: five steps with every launch waited for and timed
@@ -96,40 +126,29 @@ static void test_timers(int backend)
  * the wall time of the steps. */
 static void test_kernel_profile(int backend)
 {
-    amsph_case c;
-    amsph_backend *b = testing_backend(backend);
-    if (!b || load_am_case(&c)) {
-        amsph_backend_destroy(b);
+    sim_pair p;
+    if (sim_pair_open(backend, &p))
         return;
-    }
-    const int steps = 5;
-    amsph_sim plain, profiled;
-    CHECK_OK(amsph_sim_create(&c, b, &plain));
-    CHECK_OK(amsph_sim_create(&c, b, &profiled));
-    CHECK_OK(take_steps(&plain, steps));
     amsph_kernel_profile profile = {0};
-    b->profile = &profile;
-    const double start = amsph_wall_seconds();
-    CHECK_OK(take_steps(&profiled, steps));
-    const double wall = amsph_wall_seconds() - start;
-    b->profile = NULL;
-    CHECK(differing_fields(&plain, &profiled) == 0, "%s: the profile changed the state", b->description);
+    p.b->profile = &profile;
+    const double wall = sim_pair_measure(&p, "kernel profile");
+    p.b->profile = NULL;
     CHECK(profile.untracked == 0 && profile.count > 20, "%s: %d kernels timed, %d launches untracked",
-          b->description, profile.count, profile.untracked);
+          p.b->description, profile.count, profile.untracked);
     double sum = 0.0;
     long long kicks = -1;
     for (int k = 0; k < profile.count; ++k) {
-        CHECK(profile.kernel[k].launches > 0 && profile.kernel[k].seconds >= 0.0, "%s: %s: %lld launches, %g s",
-              b->description, profile.kernel[k].name, profile.kernel[k].launches, profile.kernel[k].seconds);
-        sum += profile.kernel[k].seconds;
-        if (!strcmp(profile.kernel[k].name, "kick"))
-            kicks = profile.kernel[k].launches;
+        const amsph_kernel_time *kt = &profile.kernel[k];
+        CHECK(kt->launches > 0 && kt->seconds >= 0.0, "%s: %s: %lld launches, %g s", p.b->description, kt->name,
+              kt->launches, kt->seconds);
+        sum += kt->seconds;
+        if (!strcmp(kt->name, "kick"))
+            kicks = kt->launches;
     }
-    CHECK(kicks == 2 * steps, "%s: kick launched %lld times in %d steps", b->description, kicks, steps);
-    CHECK(sum <= wall, "%s: the kernels took %g s of %g s", b->description, sum, wall);
-    amsph_sim_free(&plain);
-    amsph_sim_free(&profiled);
-    amsph_backend_destroy(b);
+    CHECK(kicks == 2 * PAIR_STEPS, "%s: kick launched %lld times in %d steps", p.b->description, kicks,
+          PAIR_STEPS);
+    CHECK(sum <= wall, "%s: the kernels took %g s of %g s", p.b->description, sum, wall);
+    sim_pair_close(&p);
 }
 
 /* Splits a CSV line in place into at most `max` fields (quoted fields may
