@@ -151,17 +151,14 @@ typedef struct {
     double timed_seconds;    /* the same number of steps with the timers on */
     double device_bytes;     /* every live buffer of the backend */
     amsph_timers timers;     /* of the timed steps */
-    amsph_kernel_profile *profile; /* o->kernels: of `steps` more, each launch waited for */
-    double profiled_seconds;       /* those steps' wall time */
+    amsph_kernel_profile profile; /* o->kernels: of `steps` more, each launch waited for */
+    double profiled_seconds;      /* those steps' wall time */
 } measurement;
 
 /* `steps` steps with each kernel timed (amsph_kernel_profile) into m. */
 static int profile_kernels(amsph_sim *s, int steps, measurement *m)
 {
-    m->profile = calloc(1, sizeof *m->profile);
-    if (!m->profile)
-        return amsph_fail("out of host memory");
-    s->backend->profile = m->profile;
+    s->backend->profile = &m->profile;
     const double start = amsph_wall_seconds();
     const int status = take_steps(s, steps);
     m->profiled_seconds = amsph_wall_seconds() - start;
@@ -261,7 +258,7 @@ static int by_kernel_seconds(const void *pa, const void *pb)
 /* The kernels of one count's profiled steps, the slowest first. */
 static void print_kernels(const measurement *m, int steps, FILE *out)
 {
-    amsph_kernel_profile p = *m->profile;
+    amsph_kernel_profile p = m->profile;
     qsort(p.kernel, (size_t)p.count, sizeof p.kernel[0], by_kernel_seconds);
     double total = 0.0;
     for (int k = 0; k < p.count; ++k)
@@ -315,11 +312,8 @@ int amsph_bench_throughput(amsph_backend *b, const amsph_case *c, const amsph_be
     if (!status && counts > 1 && m[counts - 1].particles != m[0].particles)
         fprintf(out, "\ncost growth: time per step ~ particles^%.2f (least squares over %d counts)\n",
                 growth_exponent(m, counts), counts);
-    for (int k = 0; k < counts; ++k) {
-        if (!status && m[k].profile)
-            print_kernels(&m[k], o->steps, out);
-        free(m[k].profile);
-    }
+    for (int k = 0; k < counts && !status && o->kernels; ++k)
+        print_kernels(&m[k], o->steps, out);
     free(m);
     return status;
 }
