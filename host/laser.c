@@ -103,7 +103,6 @@ static int lay_out_bins(amsph_sim *s)
     }
     const size_t bytes = nodes * sizeof(amsph_real);
     AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_weight));
-    AMSPH_CHECK(amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_volume));
     return amsph_buffer_alloc(s->backend, bytes, &s->laser.bin_power);
 }
 
@@ -240,8 +239,8 @@ static int pass_grid(amsph_sim *s, laser_params *pass, int *columns)
     return 0;
 }
 
-/* Russell 2018 §3.2.2: volumes onto the bins, Beer-Lambert down the
- * columns, power back to the particles (kernels/laser.cl). */
+/* Russell 2018 §3.2.2: volumes onto the bins and Beer-Lambert down the
+ * columns in one walk, power back to the particles (kernels/laser.cl). */
 static int absorb_volumetric(amsph_sim *s)
 {
     amsph_backend *b = s->backend;
@@ -250,16 +249,13 @@ static int absorb_volumetric(amsph_sim *s)
     laser_params pass;
     int columns;
     AMSPH_CHECK(pass_grid(s, &pass, &columns));
-    const int nodes = columns * pass.depth_nodes;
     const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
     const amsph_arg params = amsph_arg_bytes(&pass, sizeof pass);
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_gather_volumes", nodes, field(s, AMSPH_FIELD_POSITION),
+    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", columns, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
                              field(s, AMSPH_FIELD_MATERIAL), grid, amsph_arg_buffer(s->grid.cell_start),
-                             amsph_arg_buffer(s->materials), params, amsph_arg_int(nodes),
-                             amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_volume)));
-    AMSPH_CHECK(AMSPH_LAUNCH(b, "laser_absorb_columns", columns, amsph_arg_buffer(l->bin_volume),
-                             params, amsph_arg_int(columns), amsph_arg_buffer(l->bin_power)));
+                             amsph_arg_buffer(s->materials), params, amsph_arg_int(columns),
+                             amsph_arg_buffer(l->bin_weight), amsph_arg_buffer(l->bin_power)));
     return AMSPH_LAUNCH(b, "laser_gather_power", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_DENSITY),
                         field(s, AMSPH_FIELD_MATERIAL), amsph_arg_int(n), grid,

@@ -289,7 +289,6 @@ void amsph_sim_free(amsph_sim *s)
     if (s->config.grains.enabled)
         amsph_grains_free(s);
     amsph_buffer_free(s->backend, s->laser.bin_weight);
-    amsph_buffer_free(s->backend, s->laser.bin_volume);
     amsph_buffer_free(s->backend, s->laser.bin_power);
     memset(s, 0, sizeof *s);
 }

@@ -78,8 +78,7 @@ typedef struct {
 /* The laser module's state (host/laser.h). */
 typedef struct {
     laser_params params;      /* the beam at the last absorption */
-    amsph_buffer *bin_weight; /* per node: sum of PIC weights */
-    amsph_buffer *bin_volume; /* per node: sum of weighted particle volumes, m^3 (2D: m^2) */
+    amsph_buffer *bin_weight; /* per node: sum of PIC weights (0 where the light is spent) */
     amsph_buffer *bin_power;  /* per node: absorbed power, W (2D: W/m) */
     double absorbed_power;    /* absorbed by all particles at the last absorption, W (2D: W/m) */
 } amsph_laser_state;

@@ -2,12 +2,12 @@
  * laser_power (W/m^3), and its power absorbed[a] = laser_power V_a (W; 2D:
  * W per metre of depth) for the host's total.
  *
- * Volumetric (Russell 2018 §3.2.2), three gather passes, no atomics, so the
+ * Volumetric (Russell 2018 §3.2.2), two gather passes, no atomics, so the
  * result does not depend on thread timing:
- *   laser_gather_volumes   each bin node gathers the PIC weights and
- *                          volumes of the particles around it;
- *   laser_absorb_columns   each column of bins walks down the beam,
- *                          absorbing Beer-Lambert style (Eqs. 3.40-3.41);
+ *   laser_absorb_columns   each column of bins walks down the beam, each
+ *                          node gathering the PIC weights and volumes of
+ *                          the particles around it and absorbing Beer-Lambert
+ *                          style (Eqs. 3.40-3.41), until its light is spent;
  *   laser_gather_power     each particle gathers the power of its 2^d nodes.
  * Surface (Fuchs et al. 2022 Eq. 17): laser_surface_absorb, one pass.
  * The beam frame and bin grid are described in laser_params.h. */
@@ -143,77 +143,88 @@ static inline void laser_cell_near(const grid_geometry *g, real x[3], int cc[3])
     }
 }
 
+/* The light left in a column below this fraction of the irradiance that
+ * enters it is spent: the nodes beneath gather nothing and take no power.
+ * It is the unit roundoff of `real`, so what the column no longer absorbs
+ * lies below the rounding of the power it has absorbed (a column of metal
+ * at alpha bin_size = 5 spends its light in four bins, where the walk went
+ * on through the whole plate and the wall under it). */
+#if AMSPH_DOUBLE
+#define LASER_SPENT REAL(1.1102230246251565e-16)
+#else
+#define LASER_SPENT REAL(5.9604645e-8)
+#endif
+
 /* Step 1 (Russell 2018 §3.2.2, "sum all particle contributions to a given
- * bin"): node n gathers, over the particles p around it,
- *   bin_weight[n] = sum_p w_pn,   bin_volume[n] = sum_p w_pn V_p,   V_p = m_p / rho_p.
+ * bin"): node i gathers, over the particles p around it,
+ *   weight = sum_p w_pn,   returned: the bin volume sum_p w_pn V_p,   V_p = m_p / rho_p.
  * A particle with w_pn > 0 lies within bin_size sqrt(d) of the node, which
  * the host keeps within the kernel support: the cells around the node that
  * the ball of that radius touches hold them all (FOR_EACH_NEIGHBOUR); the
  * others in those cells are passed over by their offsets, before the
  * weight is formed. */
-KERNEL void laser_gather_volumes(GLOBAL const real *position, GLOBAL const real *mass,
-                                 GLOBAL const real *density, GLOBAL const int *material, grid_geometry g,
-                                 GLOBAL const int *cell_start, GLOBAL const real *materials,
-                                 laser_params p, int nodes,
-                                 GLOBAL real *bin_weight, GLOBAL real *bin_volume)
+static inline real laser_gather_node(GLOBAL const real *position, GLOBAL const real *mass,
+                                     GLOBAL const real *density, GLOBAL const int *material,
+                                     const grid_geometry *g, GLOBAL const int *cell_start,
+                                     GLOBAL const real *materials, const laser_params *p,
+                                     real axis[AMSPH_DIM][3], const int i[AMSPH_DIM], real *weight)
 {
-    FOR_EACH_ITEM(node, nodes)
-    {
-        real axis[AMSPH_DIM][3];
-        laser_frame(&p, axis);
-        int i[AMSPH_DIM];
-        laser_node_indices(&p, node, i);
-        real q_node[AMSPH_DIM];
-        for (int k = 0; k < AMSPH_DIM - 1; ++k)
-            q_node[k] = ((real)i[k] - laser_axis_index(&p)) * p.bin_size;
-        q_node[AMSPH_DIM - 1] = p.depth_lo + (real)i[AMSPH_DIM - 1] * p.bin_size;
-        real x[3];
-        for (int d = 0; d < 3; ++d) {
-            x[d] = p.centre[d];
-            for (int k = 0; k < AMSPH_DIM; ++k)
-                x[d] += q_node[k] * axis[k][d];
-        }
-        int cc[3];
-        laser_cell_near(&g, x, cc);
-        const real reach2 = (real)AMSPH_DIM * p.bin_size * p.bin_size;
-        real sum_w = REAL(0.0), sum_wv = REAL(0.0);
-        FOR_EACH_NEIGHBOUR(b, run, &g, cc, x, cell_start, sqrt(reach2))
-        {
-            real r[3], offset[AMSPH_DIM]; /* r_b - x for the image of b next to the node */
-            for (int d = 0; d < 3; ++d)
-                r[d] = position[3 * b + d] - run.point[d];
-            int in_stencil = 1;
-            for (int k = 0; k < AMSPH_DIM; ++k) {
-                offset[k] = dot3(r, axis[k]) / p.bin_size;
-                in_stencil &= fabs(offset[k]) < REAL(1.0);
-            }
-            if (in_stencil && !material_is_gas(materials, material[b])) { /* a gas is transparent */
-                const real w = laser_pic_weight(offset);
-                sum_w += w;
-                sum_wv += w * mass[b] / density[b];
-            }
-        }
-        bin_weight[node] = sum_w;
-        bin_volume[node] = sum_wv;
+    real q_node[AMSPH_DIM];
+    for (int k = 0; k < AMSPH_DIM - 1; ++k)
+        q_node[k] = ((real)i[k] - laser_axis_index(p)) * p->bin_size;
+    q_node[AMSPH_DIM - 1] = p->depth_lo + (real)i[AMSPH_DIM - 1] * p->bin_size;
+    real x[3];
+    for (int d = 0; d < 3; ++d) {
+        x[d] = p->centre[d];
+        for (int k = 0; k < AMSPH_DIM; ++k)
+            x[d] += q_node[k] * axis[k][d];
     }
+    int cc[3];
+    laser_cell_near(g, x, cc);
+    const real reach2 = (real)AMSPH_DIM * p->bin_size * p->bin_size;
+    real sum_w = REAL(0.0), sum_wv = REAL(0.0);
+    FOR_EACH_NEIGHBOUR(b, run, g, cc, x, cell_start, sqrt(reach2))
+    {
+        real r[3], offset[AMSPH_DIM]; /* r_b - x for the image of b next to the node */
+        for (int d = 0; d < 3; ++d)
+            r[d] = position[3 * b + d] - run.point[d];
+        int in_stencil = 1;
+        for (int k = 0; k < AMSPH_DIM; ++k) {
+            offset[k] = dot3(r, axis[k]) / p->bin_size;
+            in_stencil &= fabs(offset[k]) < REAL(1.0);
+        }
+        if (in_stencil && !material_is_gas(materials, material[b])) { /* a gas is transparent */
+            const real w = laser_pic_weight(offset);
+            sum_w += w;
+            sum_wv += w * mass[b] / density[b];
+        }
+    }
+    *weight = sum_w;
+    return sum_wv;
 }
 
 /* Step 2 (Russell 2018 Eqs. 3.40-3.41 through the bins): each column walks
  * down the beam from the irradiance I0(r) of its axis distance r (Eq. 3.42)
- * at the top. Bin k, of cross-section A (2D: bin_size x 1 m) and volume
- * fraction V_f = bin_volume / (A bin_size), has the optical thickness
- *   tau_k = alpha bin_size V_f = alpha bin_volume / A,
+ * at the top, gathering each node (step 1) on its way. Bin k, of
+ * cross-section A (2D: bin_size x 1 m) and volume fraction
+ * V_f = volume / (A bin_size), has the optical thickness
+ *   tau_k = alpha bin_size V_f = alpha volume / A,
  * absorbs P_k = I_k A (1 - exp(-tau_k)) and passes I_{k+1} = I_k exp(-tau_k)
  * on. The sum telescopes: a column absorbs exactly I0 A (1 - exp(-sum tau_k)),
- * the Beer-Lambert total of its material, whatever the bin size. Russell's
- * linearised P_k = alpha I_k sum w V is the first-order expansion of the same
- * bin in alpha bin_size: it overshoots by about tau_k / 2 per bin (5% at
+ * the Beer-Lambert total of its material, whatever the bin size, less the
+ * light it holds when spent (below LASER_SPENT I0). Russell's linearised
+ * P_k = alpha I_k sum w V is the first-order expansion of the same bin in
+ * alpha bin_size: it overshoots by about tau_k / 2 per bin (5% at
  * alpha bin_size = 0.1) and cannot meet a 0.1% energy goal. */
-KERNEL void laser_absorb_columns(GLOBAL const real *bin_volume, laser_params p, int columns,
-                                 GLOBAL real *bin_power)
+KERNEL void laser_absorb_columns(GLOBAL const real *position, GLOBAL const real *mass,
+                                 GLOBAL const real *density, GLOBAL const int *material, grid_geometry g,
+                                 GLOBAL const int *cell_start, GLOBAL const real *materials, laser_params p,
+                                 int columns, GLOBAL real *bin_weight, GLOBAL real *bin_power)
 {
     FOR_EACH_ITEM(column, columns)
     {
+        real axis[AMSPH_DIM][3];
+        laser_frame(&p, axis);
         int i[AMSPH_DIM];
         laser_node_indices(&p, p.depth_nodes * column, i);
         real r2 = REAL(0.0);
@@ -227,11 +238,20 @@ KERNEL void laser_absorb_columns(GLOBAL const real *bin_volume, laser_params p, 
         const real area = p.bin_size;
 #endif
         real intensity = laser_irradiance(&p, r2);
+        const real spent = LASER_SPENT * intensity;
         for (int k = 0; k < p.depth_nodes; ++k) {
             const int node = k + p.depth_nodes * column;
-            const real tau = p.absorption * bin_volume[node] / area;
-            bin_power[node] = -intensity * area * expm1(-tau);
-            intensity *= exp(-tau);
+            real weight = REAL(0.0), power = REAL(0.0);
+            if (intensity > spent) {
+                i[AMSPH_DIM - 1] = k;
+                const real volume = laser_gather_node(position, mass, density, material, &g, cell_start, materials,
+                                                      &p, axis, i, &weight);
+                const real tau = p.absorption * volume / area;
+                power = -intensity * area * expm1(-tau);
+                intensity *= exp(-tau);
+            }
+            bin_weight[node] = weight;
+            bin_power[node] = power;
         }
     }
 }
