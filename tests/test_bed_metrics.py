@@ -24,7 +24,10 @@ droplet of n + 1 particles (radius sqrt((n + 1) / pi) dx in 2D, (3 (n + 1)
 / (4 pi))^(1/3) dx in 3D, about its mean x and y), from the substrate's
 top to the bed's top at 5 dx, grain 2's 3^d particles at first (its
 farthest 1.5 dx from the axis, within either radius), none at the last. A
-fast wall particle must not count.
+fast wall particle must not count. The same bed again with a gas phase
+(material 1, fluid particles) in a layer above it and one gas particle by
+each grain, moving at 9 m/s in the last snapshot: with --gas 1 the readings
+must be the bed's without gas.
 Skipped (exit 77) where numpy or h5py is missing.
 
 usage: test_bed_metrics.py SOURCE_DIR WORK_DIR
@@ -75,21 +78,41 @@ def scene(dim, stage):
     return position, kind, grain, len(block)
 
 
-def check(source, work, dim):
-    """Runs the tool on the three snapshots; returns the number of failed checks."""
-    folder = os.path.join(work, f"{dim}d")
+def with_gas(dim, position, kind, grain):
+    """The scene with a gas phase added: a layer at up = 12.5..13.5 dx and a
+    particle 3 dx above each grain's centre; returns the arrays and the
+    materials (0, the gas 1)."""
+    up = dim - 1
+    layer = lattice(dim, 0, 20, 12.5, 13.5) * DX
+    by_grains = np.array([position[grain == g].mean(axis=0) for g in range(3)])
+    by_grains[:, up] += 3.0 * DX
+    gas = np.concatenate([layer, by_grains])
+    material = np.concatenate([np.zeros(len(kind), dtype=np.int32), np.ones(len(gas), dtype=np.int32)])
+    return (np.concatenate([position, gas]), np.concatenate([kind, np.full(len(gas), FLUID, dtype=np.int32)]),
+            np.concatenate([grain, np.full(len(gas), -1, dtype=np.int32)]), material)
+
+
+def check(source, work, dim, gas):
+    """Runs the tool on the three snapshots (with a gas phase that --gas
+    leaves out if `gas`); returns the number of failed checks."""
+    folder = os.path.join(work, f"{dim}d{'_gas' if gas else ''}")
     os.makedirs(folder)
     for index, stage in enumerate((0.0, 0.5, 1.0)):
         position, kind, grain, n_block = scene(dim, stage)
+        material = np.zeros(len(kind), dtype=np.int32)
+        if gas:
+            position, kind, grain, material = with_gas(dim, position, kind, grain)
         velocity = np.zeros_like(position)
         if stage == 1:
-            velocity[-1, 0] = 7.0                               # the lone fluid particle
+            velocity[np.flatnonzero(material == 0)[-1], 0] = 7.0  # the lone fluid particle
             velocity[np.flatnonzero(kind == WALL)[0], 0] = 70.0  # walls do not count
+            velocity[material == 1, 0] = 9.0                   # nor does the gas
         with h5py.File(os.path.join(folder, f"snap_{index:06d}.h5"), "w") as f:
             f.attrs["dim"], f.attrs["dx"], f.attrs["time"], f.attrs["step"] = dim, DX, 1e-6 * index, index
             f["position"], f["kind"], f["grain"] = position.astype(np.float32), kind, grain
             f["velocity"], f["mass"] = velocity.astype(np.float32), np.ones(len(kind), dtype=np.float32)
-    got = last_csv_row(source, "bed_metrics", folder)
+            f["material"] = material
+    got = last_csv_row(source, "bed_metrics", folder, *(["--gas", "1"] if gas else []))
     mean_x = (10.0 * n_block + LONE[0]) / (n_block + 1)
     drop = n_block + 1
     radius = np.sqrt(drop / np.pi) if dim == 2 else (3.0 * drop / (4.0 * np.pi)) ** (1.0 / 3.0)
@@ -103,13 +126,13 @@ def check(source, work, dim):
                 "packing_under_drop_start": (3 ** dim / column, 1e-4), "packing_under_drop_end": (0.0, 0)}
     if dim == 3:
         expected["wetted_width_y_um"] = (4.0, 1e-3)
-    return check_readings(f"{dim}D:", got, expected), len(expected)
+    return check_readings(f"{dim}D with gas:" if gas else f"{dim}D:", got, expected), len(expected)
 
 
 def main():
     source, work = sys.argv[1:3]
     shutil.rmtree(work, ignore_errors=True)
-    results = [check(source, work, dim) for dim in (2, 3)]
+    results = [check(source, work, dim, gas) for dim in (2, 3) for gas in (False, True)]
     failed, total = sum(f for f, _ in results), sum(n for _, n in results)
     print(f"{total - failed} passed, {failed} failed")
     sys.exit(1 if failed else 0)

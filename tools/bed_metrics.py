@@ -3,7 +3,7 @@
 (and, for the grains the fluid touched, every snapshot between; the binder-jetting scenes,
 cases/am/binder_jetting_*.yaml, Fuchs et al. 2022 Sec. 4.2), in 2D (up is y) or 3D (up is z).
 
-    tools/bed_metrics.py OUTDIR [--speed 5] [--csv FILE]
+    tools/bed_metrics.py OUTDIR [--speed 5] [--csv FILE] [--gas MATERIAL]
 
 Prints, at the last snapshot against the first:
   grains        how many grains moved more than dx (centre of mass of the grain's
@@ -31,7 +31,9 @@ Prints, at the last snapshot against the first:
                 grains at the last;
   lone          fluid particles with fewer than 3 fluid neighbours within 1.5 dx
                 (spray and particles left on the grains).
-Lengths in um. --csv FILE writes the readings as one row of a table as well.
+Lengths in um. --csv FILE writes the readings as one row of a table as well. --gas MATERIAL
+(the material's index in the case file, from 0) leaves that gas phase out of every snapshot:
+the readings are those of the liquid, and the gas counts as the void.
 """
 import argparse
 import csv
@@ -44,10 +46,15 @@ import numpy as np
 FLUID, WALL, SOLID, GRAIN = 0, 1, 2, 3
 
 
-def snapshot(path):
+def snapshot(path, gas=None):
+    """A snapshot's datasets and attributes, without the particles of material `gas`."""
     with h5py.File(path, "r") as f:
-        return {name: f[name][()] for name in f} | {"time": float(f.attrs["time"]), "dx": float(f.attrs["dx"]),
-                                                 "dim": int(f.attrs["dim"])}
+        s = {name: f[name][()] for name in f}
+        attrs = {"time": float(f.attrs["time"]), "dx": float(f.attrs["dx"]), "dim": int(f.attrs["dim"])}
+    if gas is not None:
+        kept = s["material"] != gas
+        s = {name: values[kept] for name, values in s.items()}
+    return s | attrs
 
 
 def within(points, others, reach):
@@ -112,11 +119,12 @@ def main():
     ap.add_argument("outdir")
     ap.add_argument("--speed", type=float, default=5.0, help="speed counted as fast, m/s (default 5)")
     ap.add_argument("--csv", help="also write the readings to this CSV file")
+    ap.add_argument("--gas", type=int, help="material index of a gas phase to leave out")
     args = ap.parse_args()
     paths = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
     if len(paths) < 2:
         raise SystemExit(f"{args.outdir}: needs at least two snapshots")
-    first, last = snapshot(paths[0]), snapshot(paths[-1])
+    first, last = snapshot(paths[0], args.gas), snapshot(paths[-1], args.gas)
     dx, dim, um = last["dx"], last["dim"], 1e6
     up, across = dim - 1, range(dim - 1)
     names = "xyz"
@@ -126,7 +134,7 @@ def main():
     shift = np.array([np.linalg.norm(end[g] - start[g]) for g in kept])
     rise = np.array([end[g][up] - start[g][up] for g in kept])
     wetted = touched_grains(first, 1.5 * dx) | touched_grains(last, 1.5 * dx)
-    wetted = wetted.union(*(touched_grains(snapshot(p), 1.5 * dx) for p in paths[1:-1]))
+    wetted = wetted.union(*(touched_grains(snapshot(p, args.gas), 1.5 * dx) for p in paths[1:-1]))
     dry = sum(1 for g, lift in zip(kept, rise) if lift > dx and g not in wetted)
     r = {"time_s": last["time"], "grains": len(kept), "grains_moved": np.sum(shift > dx),
          "displacement_median_um": np.median(shift) * um, "displacement_max_um": shift.max() * um,
