@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Writes cases/am/binder_jetting_{1,10,50}ms_{2,3}d.yaml, the binder-jetting
-scene of Fuchs et al. 2022 Sec. 4.2 at the droplet speeds, from one template
-(the settings that follow from the speed and the dimension are worked out
-here)."""
+scene of Fuchs et al. 2022 Sec. 4.2 at the droplet speeds, and
+binder_jetting_10ms_gas_2d.yaml with the gas phase, from one template (the
+settings that follow from the speed, the dimension and the gas are worked
+out here)."""
 import math
 import pathlib
 import re
 
-TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and without the gas
+TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and @WITH@ the gas
 # phase: a binder droplet of 80 um diameter (rho 1000, eta 1e-3, sigma 0.5,
 # Fuchs Table 4) falls at @SPEED@ m/s onto a bed of @GRAINS@mobile steel grains
 # (log-normal diameters 16 to 32 um, settled by the powder-bed generator,
@@ -42,23 +43,23 @@ TEMPLATE = '''# Binder jetting after Fuchs et al. 2022 §4.2, in @DIM@D and with
 # a spray particle hit the wall at 60 m/s at 17.5 us (20% compression).
 # k_c stops a grain hit at the
 # droplet's speed within half a dx on two contacts, with a damping ratio
-# near 0.5.@NOTE@@RUN_NOTE@ Written by tools/binder_variants.py.
+# near 0.5.@NOTE@@RUN_NOTE@@GAS_NOTE@ Written by tools/binder_variants.py.
 dimension: @DIM@
 @DOMAIN@
 dx: @DX@
 end_time: @END@
 output_interval: @OUTPUT@
 @GRAVITY@
-fluid: {viscosity: artificial, artificial_alpha: 0.1, shifting: 0.5, max_density_error: 0.35,
+fluid: {@MULTIPHASE@viscosity: artificial, artificial_alpha: 0.1, shifting: 0.5, max_density_error: 0.35,
         barrier: {stiffness: @BARRIER@, damping: 0, distance: @BARRIER_DISTANCE@}}
 surface: {h_over_dx: 2.25, interface_viscosity: @ALPHA0@}
 grains: {contact_stiffness: @STIFFNESS@, contact_damping: @DAMPING@}
 materials:
   - {name: binder, density: 1000, viscosity: 1.0e-3, surface_tension: 0.5, sound_speed: @SOUND@,
      contact_angle: 60}   # Fuchs et al. 2022 Table 4: theta0 = 60 degrees
-  - {name: steel, density: 7430, sound_speed: @STEEL_SOUND@}
+  - {name: steel, density: 7430, sound_speed: @STEEL_SOUND@}@GAS_MATERIAL@
 geometry:
-@GEOMETRY@
+@GEOMETRY@@GAS_FILL@
 '''
 
 GEOMETRY = {
@@ -96,6 +97,9 @@ SCENE = {
 # (it ran 92 min beside other runs); the 2D slices all run to 0.1 ms
 RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.0e-6),
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
+# with the gas phase: the impact and the spreading, 0.04 ms (the gas's steps
+# are ten times shorter than the binder's)
+GAS_RUN = {(2, 10): (4.0e-5, 2.0e-6)}
 
 # what a case's header adds about its own run
 NOTES = {(3, 50): ("\n# At dx = 4 um this droplet does not splash as Fuchs's does (without the"
@@ -108,9 +112,37 @@ FUCHS_ALPHA0 = 1.8      # their binder's interface viscosity (Table 4)
 GRAIN_RADIUS = 1.1e-5   # m, the bed's median grain
 STEEL = 7430.0          # kg/m^3
 BINDER = 1000.0
+GAS = 10.0              # kg/m^3: density ratio 100 (Fuchs Sec. 4.1)
+GAS_VISCOSITY = 1.0e-4  # Pa s: viscosity ratio 10 to the binder's 1e-3
+
+GAS_NOTE = """
+# With the gas phase (Fuchs Sec. 4.1): the free space of the box, the bed's
+# pores included, filled (`fill`) with a gas of density @GAS@ kg/m^3 and
+# viscosity @GAS_VISCOSITY@ Pa s (density ratio 100, viscosity ratio 10 to the
+# binder) and a bulk modulus rho c^2 a quarter of the binder's (c = @GAS_SOUND@
+# m/s, as cases/validation/young_laplace_gas_2d.yaml); the multiphase
+# pressure force (Fuchs Eq. 23) and a background pressure of 0.03 rho0 c0^2
+# of the binder (as hydrostatic_gas_2d.yaml), which keeps the gas out of
+# tension. The barrier on the gas's light particles sets the step, 3.5e-10
+# s: 0.04 ms, 115000 steps, in 21 min on 2 cores (docs/RESULTS.md).
+#"""
 
 
-def settings(speed, dim):
+def gas_settings(sound, gas):
+    """The template's gas keys: empty without the gas phase."""
+    if not gas:
+        return {"WITH": "without", "MULTIPHASE": "", "GAS_MATERIAL": "", "GAS_FILL": "", "GAS_NOTE": ""}
+    gas_sound = f"{float(f'{sound * math.sqrt(BINDER / (4.0 * GAS)):.3g}'):g}"
+    return {"WITH": "with", "GAS_NOTE": GAS_NOTE.replace("@GAS_SOUND@", gas_sound),
+            "MULTIPHASE": f"pressure_gradient: multiphase, background_pressure: {0.03 * BINDER * sound ** 2:.3g},\n"
+                          "        ",
+            "GAS_MATERIAL": f"\n  - {{name: gas, phase: gas, density: {GAS:g}, viscosity: {GAS_VISCOSITY:.1e}, "
+                            f"sound_speed: {gas_sound}}}",
+            "GAS_FILL": "\n  - {shape: box, kind: fluid, material: gas, min: [0, 0], max: [3.2e-4, 2.0e-4], fill: true}",
+            "GAS": f"{GAS:g}", "GAS_VISCOSITY": f"{GAS_VISCOSITY:.0e}"}
+
+
+def settings(speed, dim, gas):
     scene = SCENE[dim]
     dx = scene["DX"]
     # twenty times the impact speed (the water-hammer pressure rho c v of the
@@ -131,23 +163,26 @@ def settings(speed, dim):
     # spray pairs at the walls closed to 0.3 dx at 10 m/s)
     closing = 2 * max(speed, capillary)
     barrier = 0.25 * BINDER * dx ** dim * closing ** 2 / (0.125 * dx) ** 2
+    end, output = (GAS_RUN if gas else RUN)[dim, speed]
     values = {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound_shown:g}",
               "STEEL_SOUND": f"{sound * math.sqrt(BINDER / STEEL):.3g}", "CAPILLARY": f"{capillary:.2g}",
               "STIFFNESS": f"{stiffness:.3g}", "DAMPING": f"{damping:.3g}", "BARRIER": f"{barrier:.3g}",
-              "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{RUN[dim, speed][0]:.1e}",
-              "OUTPUT": f"{RUN[dim, speed][1]:.1e}", "ALPHA0": f"{FUCHS_ALPHA0 * FUCHS_SOUND / sound_shown:.3g}",
+              "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{end:.1e}",
+              "OUTPUT": f"{output:.1e}", "ALPHA0": f"{FUCHS_ALPHA0 * FUCHS_SOUND / sound_shown:.3g}",
               "RUN_NOTE": NOTES.get((dim, speed), "")}
-    return scene | {"DX": f"{dx:.1e}"} | values
+    return scene | {"DX": f"{dx:.1e}"} | values | gas_settings(sound, gas)
 
 
 def main():
     root = pathlib.Path(__file__).resolve().parent.parent
-    for (dim, speed) in RUN:
-        text = TEMPLATE.replace("@GEOMETRY@", GEOMETRY[dim])
-        for key, value in settings(speed, dim).items():
-            text = text.replace("@" + key + "@", value)
-        text = re.sub(r"e-0(\d)", r"e-\1", text)   # 2.0e-6, not 2.0e-06
-        (root / "cases" / "am" / f"binder_jetting_{speed}ms_{dim}d.yaml").write_text(text)
+    for gas, runs in ((False, RUN), (True, GAS_RUN)):
+        for (dim, speed) in runs:
+            text = TEMPLATE.replace("@GEOMETRY@", GEOMETRY[dim])
+            for key, value in settings(speed, dim, gas).items():
+                text = text.replace("@" + key + "@", value)
+            text = re.sub(r"e-0(\d)", r"e-\1", text)   # 2.0e-6, not 2.0e-06
+            name = f"binder_jetting_{speed}ms_{'gas_' if gas else ''}{dim}d.yaml"
+            (root / "cases" / "am" / name).write_text(text)
 
 
 if __name__ == "__main__":
