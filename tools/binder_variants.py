@@ -124,7 +124,10 @@ GAS_NOTE = """
 # pressure force (Fuchs Eq. 23) and a background pressure of 0.03 rho0 c0^2
 # of the binder (as hydrostatic_gas_2d.yaml), which keeps the gas out of
 # tension. The barrier on the gas's light particles sets the step, 3.5e-10
-# s: 0.04 ms, 115000 steps, in 21 min on 2 cores (docs/RESULTS.md).
+# s: 0.04 ms, 115000 steps, in 21 min on 2 cores. The droplet comes to rest
+# on a film of gas two particles thick that does not drain, on the bed as
+# on the bare substrate, and wets nothing: this scene does not yet show
+# Fuchs's infiltration (docs/RESULTS.md).
 #"""
 
 
