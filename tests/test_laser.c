@@ -267,17 +267,48 @@ static const char *wide_case_3d =
     "laser: {power: 100, radius: 0.4, absorption_coefficient: 3, direction: [0.2, 0.3, -1],\n"
     "        start: [0.3, 0.5, 0.7], bin_size: 0.03}\n";
 
+/* An opaque slab under a vertical beam: alpha bin_size = 5.1 (bins of dx), so a column
+ * has spent its light (below the unit roundoff of what entered it) within
+ * about four bins of material, and the walk stops there (LASER_SPENT): the
+ * particles below must get no power, where the reference, which walks the
+ * whole column in double, still gives them e^-(5.1 k) of it. Eight bins
+ * below the top face a column of the slab keeps e^-40 of its light, below
+ * LASER_SPENT in float and in double, so every particle there within a
+ * beam radius of the axis (away from the slab's half-filled edge columns)
+ * must be dark; without the stop they are lit through the slab's 15 bins
+ * (in float the light would underflow about 22 bins down). */
+static const char *opaque_case_3d =
+    "dimension: 3\n"
+    "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+    "dx: 0.04\n"
+    CASE_RUN_AND_STEEL
+    "geometry: [{shape: box, kind: solid, material: steel, min: [0.1, 0.1, 0.1], max: [0.9, 0.9, 0.7]}]\n"
+    "laser: {power: 100, radius: 0.12, absorption_coefficient: 128, direction: [0, 0, -1],\n"
+    "        start: [0.5, 0.5, 0.7]}\n";
+
 /* Largest |laser_power - reference| over the particles, relative to the
- * largest reference value; laser_power by particle id into by_id. */
-static double compare_reference(amsph_sim *s, double *by_id, double *total_error)
+ * largest reference value; laser_power by particle id into by_id; *dark:
+ * the particles that got no power where the reference gives them some;
+ * *lit_deep: those lit below the height `deep` (up the last axis) within a
+ * beam radius of a vertical beam's axis. */
+static double compare_reference(amsph_sim *s, double deep, double *by_id, double *total_error, int *dark,
+                                int *lit_deep)
 {
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&s->particles, &h));
     double *expected = malloc((size_t)h.n * sizeof *expected);
     const double total = reference_absorb(&s->config, &s->laser.params, &h, expected);
     double worst = 0.0, scale = 0.0;
+    *dark = *lit_deep = 0;
     for (int i = 0; i < h.n; ++i) {
         const double got = amsph_host_real(&h, AMSPH_FIELD_LASER_POWER)[i];
+        *dark += got == 0.0 && expected[i] > 0.0;
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
+        const amsph_laser_settings *l = &s->config.laser;
+        double r2 = 0.0;
+        for (int d = 0; d < s->config.dim - 1; ++d)
+            r2 += (x[d] - l->start[d]) * (x[d] - l->start[d]);
+        *lit_deep += got != 0.0 && x[s->config.dim - 1] < deep && r2 < l->radius * l->radius;
         worst = fmax(worst, fabs(got - expected[i]));
         scale = fmax(scale, fabs(expected[i]));
         by_id[((unsigned *)h.data[AMSPH_FIELD_ID])[i]] = got;
@@ -307,7 +338,10 @@ static void check_backends_agree(const char *name, int n, const int ran[TESTING_
           worst / scale);
 }
 
-static void test_reference(const char *text, const char *name)
+/* The passes against the reference; `spent`: whether the light runs out
+ * within the material: then the particles eight bins below the top face
+ * near the axis must be dark, else none may be. */
+static void test_reference(const char *text, const char *name, int spent)
 {
     int n = 0, ran[TESTING_BACKENDS] = {0, 0};
     amsph_case c;
@@ -325,9 +359,17 @@ static void test_reference(const char *text, const char *name)
         CHECK_OK(scatter_particles(&s, lo, hi));
         CHECK_OK(amsph_laser_absorb(&s, 0.0));
         double total_error = 0.0;
-        const double error = compare_reference(&s, by_id[k], &total_error);
-        fprintf(stderr, "%s, %s: laser_power differs from the reference by %.2e of its peak, the total by %.2e\n",
-                name, k ? "opencl" : "openmp", error, total_error);
+        int dark = 0, lit_deep = 0;
+        const double deep = spent ? hi[c.dim - 1] - 8.0 * c.laser.bin_size : -INFINITY;
+        const double error = compare_reference(&s, deep, by_id[k], &total_error, &dark, &lit_deep);
+        fprintf(stderr,
+                "%s, %s: laser_power differs from the reference by %.2e of its peak, the total by %.2e; "
+                "%d of %d particles below the spent light\n",
+                name, k ? "opencl" : "openmp", error, total_error, dark, s.particles.n);
+        CHECK(spent ? dark > 0 : dark == 0, "%s on backend %d: %d particles dark (the light %s)", name, k, dark,
+              spent ? "is spent within the slab" : "reaches through the slab");
+        CHECK(lit_deep == 0, "%s on backend %d: %d particles near the axis lit eight bins below the top face", name, k,
+              lit_deep);
         /* float: bin coordinates up to ~100 bins from the beam centre carry
          * 1e-7 x 100 = 1e-5 of a bin of rounding into the PIC weights */
         CHECK(error < (AMSPH_DOUBLE ? 1e-9 : 1e-5), "%s on backend %d: error %.3g", name, k, error);
@@ -538,10 +580,11 @@ int main(void)
     test_schedule();
     test_hook();
     test_bins_too_large();
-    test_reference(random_case_2d, "random 2D");
-    test_reference(random_case_3d, "random 3D, periodic seam");
-    test_reference(wide_case_2d, "random 2D, window past the domain");
-    test_reference(wide_case_3d, "random 3D, window past the domain");
+    test_reference(random_case_2d, "random 2D", 0);
+    test_reference(random_case_3d, "random 3D, periodic seam", 0);
+    test_reference(wide_case_2d, "random 2D, window past the domain", 0);
+    test_reference(wide_case_3d, "random 3D, window past the domain", 0);
+    test_reference(opaque_case_3d, "random 3D, opaque", 1);
     test_slab("laser_slab_2d.yaml", 1.0);
     test_slab("laser_slab_2d.yaml", 0.27);
     test_slab("laser_slab_3d.yaml", 1.0);
