@@ -136,13 +136,15 @@ def gas_settings(sound, gas):
     if not gas:
         return {"WITH": "without", "MULTIPHASE": "", "GAS_MATERIAL": "", "GAS_FILL": "", "GAS_NOTE": ""}
     gas_sound = f"{float(f'{sound * math.sqrt(BINDER / (4.0 * GAS)):.3g}'):g}"
-    return {"WITH": "with", "GAS_NOTE": GAS_NOTE.replace("@GAS_SOUND@", gas_sound),
+    note = GAS_NOTE
+    for key, value in (("GAS", f"{GAS:g}"), ("GAS_VISCOSITY", f"{GAS_VISCOSITY:.0e}"), ("GAS_SOUND", gas_sound)):
+        note = note.replace("@" + key + "@", value)
+    return {"WITH": "with", "GAS_NOTE": note,
             "MULTIPHASE": f"pressure_gradient: multiphase, background_pressure: {0.03 * BINDER * sound ** 2:.3g},\n"
                           "        ",
             "GAS_MATERIAL": f"\n  - {{name: gas, phase: gas, density: {GAS:g}, viscosity: {GAS_VISCOSITY:.1e}, "
                             f"sound_speed: {gas_sound}}}",
-            "GAS_FILL": "\n  - {shape: box, kind: fluid, material: gas, min: [0, 0], max: [3.2e-4, 2.0e-4], fill: true}",
-            "GAS": f"{GAS:g}", "GAS_VISCOSITY": f"{GAS_VISCOSITY:.0e}"}
+            "GAS_FILL": "\n  - {shape: box, kind: fluid, material: gas, min: [0, 0], max: [3.2e-4, 2.0e-4], fill: true}"}
 
 
 def settings(speed, dim, gas):
