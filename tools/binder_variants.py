@@ -97,9 +97,10 @@ SCENE = {
 # (it ran 92 min beside other runs); the 2D slices all run to 0.1 ms
 RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.0e-6),
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
-# with the gas phase: the impact and the spreading, 0.04 ms (the gas's steps
-# are ten times shorter than the binder's)
-GAS_RUN = {(2, 10): (4.0e-5, 2.0e-6)}
+# with the gas phase (the gas's steps are ten times shorter than the
+# binder's): at 1 m/s the whole 0.1 ms, at 10 m/s the impact and the
+# spreading, 0.04 ms, at 50 m/s the splash, 10 us
+GAS_RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (4.0e-5, 2.0e-6), (2, 50): (1.0e-5, 5.0e-7)}
 
 # what a case's header adds about its own run
 NOTES = {(3, 50): ("\n# At dx = 4 um this droplet does not splash as Fuchs's does (without the"
@@ -112,6 +113,8 @@ FUCHS_ALPHA0 = 1.8      # their binder's interface viscosity (Table 4)
 GRAIN_RADIUS = 1.1e-5   # m, the bed's median grain
 STEEL = 7430.0          # kg/m^3
 BINDER = 1000.0
+SURFACE_TENSION = 0.5   # N/m, the binder's (Fuchs Table 4)
+DROPLET_RADIUS = 4.0e-5 # m
 GAS = 10.0              # kg/m^3: density ratio 100 (Fuchs Sec. 4.1)
 GAS_VISCOSITY = 1.0e-4  # Pa s: viscosity ratio 10 to the binder's 1e-3
 # Pa: the background pressure of cases/validation/drag_gas_2d.yaml, the
@@ -119,6 +122,21 @@ GAS_VISCOSITY = 1.0e-4  # Pa s: viscosity ratio 10 to the binder's 1e-3
 # rho0 c0^2 of the binder, 1.2e6 Pa, 66), read from it so that the two agree
 DRAG_CASE = pathlib.Path(__file__).resolve().parent.parent / "cases" / "validation" / "drag_gas_2d.yaml"
 GAS_BACKGROUND = float(re.search(r"background_pressure: ([-+.0-9e]+)", DRAG_CASE.read_text()).group(1))
+DRAG_SPEED = -float(re.search(r"velocity: \[0, ([-+.0-9e]+)\]", DRAG_CASE.read_text()).group(1))
+
+
+def gas_background(speed):
+    """p_b at an impact speed: the drag case's, scaled with the dynamic
+    pressure rho v^2 of the flow it keeps the gas out of tension in, v the
+    larger of the impact speed and the droplet's capillary speed
+    sqrt(sigma / (rho R)) = 3.5 m/s. The drag cases at the scenes' settings
+    (C_d from the binder's mean velocity; test_gas drag and drag50): 7.8 at
+    10 m/s and 3e4 Pa, 3.8 at 50 m/s and 7.5e5 Pa, and, not a test, 15 at 1
+    m/s and 3750 Pa (13 with p_b = 0; Re = 1.7 there, where Oseen's drag of
+    an unbounded cylinder is 10)."""
+    flow = max(speed, math.sqrt(SURFACE_TENSION / (BINDER * DROPLET_RADIUS)))
+    return GAS_BACKGROUND * (flow / DRAG_SPEED) ** 2
+
 
 GAS_NOTE = """
 # With the gas phase (Fuchs Sec. 4.1): the free space of the box, the bed's
@@ -126,30 +144,47 @@ GAS_NOTE = """
 # viscosity @GAS_VISCOSITY@ Pa s (density ratio 100, viscosity ratio 10 to the
 # binder) and a bulk modulus rho c^2 a quarter of the binder's (c = @GAS_SOUND@
 # m/s, as cases/validation/young_laplace_gas_2d.yaml); the multiphase
-# pressure force (Fuchs Eq. 23) and the background pressure of
-# cases/validation/drag_gas_2d.yaml, @GAS_BACKGROUND@ Pa: enough to keep the gas
-# out of tension (its pressure, 1st to 99th percentile, stays between 300
-# Pa and 86 kPa, its lowest -760 Pa) and no more, since p_b drags a liquid
-# moving through the gas. At 0.03 rho0 c0^2 of the binder (1.2e6 Pa; C_d
-# 66 in the drag case) this droplet came to rest on a gas film on the
-# bed's top and did not soak in. The barrier on the gas's light particles sets the step,
-# 3.5e-10 s: 0.04 ms, 115000 steps, in 26 min on 2 cores. The droplet
-# soaks into the bed (its lowest particle 11.5 um above the substrate at
-# 0.04 ms) and loosens it less than without the gas (docs/RESULTS.md).
+# pressure force (Fuchs Eq. 23) and a background pressure of @GAS_BACKGROUND@ Pa:
+# that of cases/validation/drag_gas_2d.yaml (3e4 Pa at 10 m/s) scaled with
+# the flow's dynamic pressure, (v / 10 m/s)^2. Enough to keep the gas out
+# of tension and no more, since p_b drags a liquid moving through the gas:
+# at 0.03 rho0 c0^2 of the binder (1.2e6 Pa at 10 m/s; C_d 66 in the drag
+# case) the 10 m/s droplet came to rest on a gas film on the bed's top and
+# did not soak in. The barrier on the gas's light particles sets the
+# step.@GAS_RESULT@
 #"""
 
+# what a gas case's header adds about its own run
+GAS_RESULTS = {
+    1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 54 min on 2 cores. The"
+        "\n# droplet soaks into the bed as without the gas (the same 7 grains, its"
+        "\n# lowest particle 5.3 um above the substrate against 9.1; docs/RESULTS.md)."),
+    50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 90927 steps, 20 min on"
+         "\n# 2 cores. The sheets reach the side walls at 3 us and the lid at 6.5 us,"
+         "\n# as without the gas. This p_b, sized for the binder's flow, drags the"
+         "\n# grains, slower (a grain at 2 m/s in the gas loses 22% of its speed in"
+         "\n# 5 us, 3.3% with p_b = 0): they are damped more than a gas would"
+         "\n# (docs/RESULTS.md)."),
+    10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 26 min on 2 cores. The"
+         "\n# gas's pressure (1st to 99th percentile) stays between 300 Pa and 86 kPa,"
+         "\n# its lowest -760 Pa. The droplet soaks into the bed (its lowest particle"
+         "\n# 11.5 um above the substrate at 0.04 ms) and loosens it less than without"
+         "\n# the gas (docs/RESULTS.md)."),
+}
 
-def gas_settings(sound, gas):
+
+def gas_settings(speed, sound, gas):
     """The template's gas keys: empty without the gas phase."""
     if not gas:
         return {"WITH": "without", "MULTIPHASE": "", "GAS_MATERIAL": "", "GAS_FILL": "", "GAS_NOTE": ""}
     gas_sound = f"{float(f'{sound * math.sqrt(BINDER / (4.0 * GAS)):.3g}'):g}"
+    background = gas_background(speed)
     note = GAS_NOTE
     for key, value in (("GAS", f"{GAS:g}"), ("GAS_VISCOSITY", f"{GAS_VISCOSITY:.0e}"), ("GAS_SOUND", gas_sound),
-                       ("GAS_BACKGROUND", f"{GAS_BACKGROUND:g}")):
+                       ("GAS_BACKGROUND", f"{background:g}"), ("GAS_RESULT", GAS_RESULTS.get(speed, ""))):
         note = note.replace("@" + key + "@", value)
     return {"WITH": "with", "GAS_NOTE": note,
-            "MULTIPHASE": f"pressure_gradient: multiphase, background_pressure: {GAS_BACKGROUND:.3g},\n"
+            "MULTIPHASE": f"pressure_gradient: multiphase, background_pressure: {background:.3g},\n"
                           "        ",
             "GAS_MATERIAL": f"\n  - {{name: gas, phase: gas, density: {GAS:g}, viscosity: {GAS_VISCOSITY:.1e}, "
                             f"sound_speed: {gas_sound}}}",
@@ -164,7 +199,7 @@ def settings(speed, dim, gas):
     # particle, sqrt(sigma / (rho dx)): at 1 m/s with ten times that of the
     # droplet, sqrt(sigma / (rho R)), binder particles flung off the contact
     # lines at 17 m/s were pressed by 37% at 23 us
-    capillary = math.sqrt(0.5 / (BINDER * dx))
+    capillary = math.sqrt(SURFACE_TENSION / (BINDER * dx))
     sound = max(20.0 * speed, 10.0 * capillary)
     sound_shown = float(f"{sound:.3g}")   # as the case file states it
     # per metre of depth in 2D
@@ -184,7 +219,7 @@ def settings(speed, dim, gas):
               "BARRIER_DISTANCE": f"{0.5 * dx:.1e}", "DIM": f"{dim}", "END": f"{end:.1e}",
               "OUTPUT": f"{output:.1e}", "ALPHA0": f"{FUCHS_ALPHA0 * FUCHS_SOUND / sound_shown:.3g}",
               "RUN_NOTE": NOTES.get((dim, speed), "")}
-    return scene | {"DX": f"{dx:.1e}"} | values | gas_settings(sound, gas)
+    return scene | {"DX": f"{dx:.1e}"} | values | gas_settings(speed, sound, gas)
 
 
 def main():
