@@ -159,17 +159,18 @@ GAS_RESULTS = {
     1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 54 min on 2 cores. The"
         "\n# droplet soaks into the bed as without the gas (the same 7 grains, its"
         "\n# lowest particle 5.3 um above the substrate against 9.1; docs/RESULTS.md)."),
+    10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 26 min on 2 cores. The"
+         "\n# gas's pressure (1st to 99th percentile) stays between 300 Pa and 86 kPa,"
+         "\n# its lowest -760 Pa. The droplet soaks into the bed (its lowest particle"
+         "\n# 11.5 um above the substrate at 0.04 ms) and loosens it less than without"
+         "\n# the gas, partly by the background pressure's drag on the grains"
+         "\n# (docs/RESULTS.md)."),
     50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 90927 steps, 20 min on"
          "\n# 2 cores. The sheets reach the side walls at 3 us and the lid at 6.5 us,"
          "\n# as without the gas. This p_b, sized for the binder's flow, drags the"
          "\n# grains, slower (a grain at 2 m/s in the gas loses 22% of its speed in"
          "\n# 5 us, 3.3% with p_b = 0): they are damped more than a gas would"
          "\n# (docs/RESULTS.md)."),
-    10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 26 min on 2 cores. The"
-         "\n# gas's pressure (1st to 99th percentile) stays between 300 Pa and 86 kPa,"
-         "\n# its lowest -760 Pa. The droplet soaks into the bed (its lowest particle"
-         "\n# 11.5 um above the substrate at 0.04 ms) and loosens it less than without"
-         "\n# the gas (docs/RESULTS.md)."),
 }
 
 
