@@ -234,22 +234,22 @@ static void test_drag(const char *file)
     const double rho_g = amsph_material_density(&c.materials[1], 0.0);
     amsph_sim s;
     amsph_host_particles h = {0};
-    double v[3] = {NAN, NAN, NAN}, at[3] = {0.0, NAN, c.end_time}, mass = NAN; /* at 0, the start and the end */
+    double v[3] = {NAN, NAN, NAN}, at[3] = {0.0, NAN, c.end_time}, mass = NAN, radius = NAN; /* 0, start, end */
     int status = amsph_sim_create(&c, b, &s);
     for (int k = 0; status == 0 && k < 3; ++k) {
         if ((status = amsph_sim_advance(&s, at[k], NULL, NULL)) == 0 &&
             (status = amsph_particles_download(&s.particles, &h)) == 0)
             v[k] = -material_velocity(&h, 0, 1, &mass);
         amsph_host_free(&h);
-        if (k == 0)
-            at[1] = 2.5 * sqrt(mass / (PI * rho_l)) / c.materials[0].sound_speed;
+        radius = sqrt(mass / (PI * rho_l));
+        at[1] = k == 0 ? 2.5 * radius / c.materials[0].sound_speed : at[1];
     }
     CHECK(status == 0, "%s", amsph_last_error());
     amsph_sim_free(&s);
     amsph_backend_destroy(b);
     if (status != 0)
         return;
-    const double radius = sqrt(mass / (PI * rho_l)), v_mean = 0.5 * (v[1] + v[2]);
+    const double v_mean = 0.5 * (v[1] + v[2]);
     const double c_d = (v[1] - v[2]) / (at[2] - at[1]) * mass / (rho_g * v_mean * v_mean * radius);
     printf("%s: %.4f -> %.4f -> %.4f m/s at 0, %.2g and %.2g s, C_d %.2f\n", file, v[0], v[1], v[2], at[1], at[2],
            c_d);
