@@ -345,6 +345,12 @@ static const key_spec specs[] = {
      .lo = 0, .hi = 10, .def = 0, .offset = FLUID(shifting),
      .doc = "Particle shifting coefficient A: fluid particles move by -A h |u| dt grad C after each step "
             "(Skillen et al. 2013; Lind et al. 2012, tangential only near free surfaces); 2 is usual; 0: off"},
+    {.section = SEC_FLUID, .key = "transport_pressure", .type = VT_NUMBER, .unit = "Pa", .flags = F_FROM_LO,
+     .lo = 0, .def = 0, .offset = FLUID(transport_pressure),
+     .doc = "Background pressure of the transport velocity (Adami et al. 2013 Eq. 13): fluid particles move "
+            "by dt^2 / 2 times -(p_tv / m_a) sum_b (V_a^2 + V_b^2) grad_a W_ab after each step, which keeps "
+            "them evenly spaced without the force `background_pressure` exerts on a body moving through "
+            "them; 0: off"},
     {.section = SEC_FLUID, .key = "smoothing_length", .type = VT_CHOICE, .choices = smoothing_choices,
      .def = SMOOTHING_FIXED, .offset = FLUID(smoothing_length),
      .doc = "Smoothing length of the fluid's pair terms: fixed h0 = `h_over_dx` dx, or following each fluid "
@@ -1857,6 +1863,7 @@ static int check_verlet(parser *p)
                         : f->pressure_gradient != PRESSURE_SYMMETRIC ? "a pressure_gradient other than 'symmetric'"
                         : f->smoothing_length != SMOOTHING_FIXED ? "'smoothing_length: volume'"
                         : f->shifting > 0                        ? "'shifting'"
+                        : f->transport_pressure > 0              ? "'transport_pressure'"
                         : f->damping_rate > 0                    ? "'damping_rate'"
                                                                  : NULL;
     return clash ? fail(p, p->integration_line,

@@ -61,6 +61,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->tensile_correction = (amsph_real)f->tensile_correction;
     p->dx = (amsph_real)s->config.dx;
     p->shifting = (amsph_real)f->shifting;
+    p->transport_pressure = (amsph_real)f->transport_pressure;
     p->barrier_stiffness = (amsph_real)f->barrier_stiffness;
     p->barrier_damping = (amsph_real)f->barrier_damping;
     p->barrier_distance = (amsph_real)f->barrier_distance;
@@ -217,6 +218,11 @@ unsigned amsph_fluid_recomputed_fields(const amsph_sim *s)
     for (size_t k = 0; s->fluid.one_pass && k < sizeof recomputed / sizeof recomputed[0]; ++k)
         fields |= 1u << recomputed[k];
     return fields;
+}
+
+int amsph_fluid_shifts(const amsph_fluid_settings *f)
+{
+    return f->shifting > 0.0 || f->transport_pressure > 0.0;
 }
 
 int amsph_fluid_shift(amsph_sim *s, double dt)

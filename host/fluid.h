@@ -23,8 +23,12 @@ int amsph_fluid_forces(amsph_sim *s);
  * (equation of state, wall_state, fluid_forces) before any kernel reads
  * them; none otherwise. */
 unsigned amsph_fluid_recomputed_fields(const amsph_sim *s);
-/* Particle shifting at the end of a step of dt (fluid.shifting > 0):
- * kernels/fluid.cl shifting_displacement, added to the positions. */
+/* Whether a step ends with a shifting pass: particle shifting
+ * (fluid.shifting) or the transport velocity (fluid.transport_pressure). */
+int amsph_fluid_shifts(const amsph_fluid_settings *f);
+/* Particle shifting and the transport velocity's displacement at the end of
+ * a step of dt: kernels/fluid.cl shifting_displacement, added to the
+ * positions. */
 int amsph_fluid_shift(amsph_sim *s, double dt);
 /* The buffer of the fluid particles' own smoothing lengths as a kernel
  * argument (fluid.smoothing_length: volume); otherwise a stand-in the

@@ -247,7 +247,7 @@ static int allocate_device_state(amsph_sim *s)
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->work));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(amsph_real), &s->closest));
     AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * sizeof(int), &s->others));
-    if (c->fluid.shifting > 0.0)
+    if (amsph_fluid_shifts(&c->fluid))
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 3 * sizeof(amsph_real), &s->shift));
     if (c->grains.enabled)
         AMSPH_CHECK(amsph_grains_allocate(s));
@@ -504,7 +504,7 @@ static int leapfrog_advance(amsph_sim *s, double dt)
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_KIND]), amsph_arg_int(p->n),
                                  amsph_arg_real(exp(-s->config.fluid.damping_rate * dt)),
                                  amsph_arg_buffer(p->field[AMSPH_FIELD_VELOCITY])));
-    return s->config.fluid.shifting > 0.0 ? amsph_fluid_shift(s, dt) : 0;
+    return amsph_fluid_shifts(&s->config.fluid) ? amsph_fluid_shift(s, dt) : 0;
 }
 
 /* The Verlet scheme (fluid.integration: verlet; kernels/integrate.cl

@@ -91,7 +91,7 @@ typedef struct {
     amsph_buffer *work;      /* one real per particle, for reductions */
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *others;    /* an int per particle: the other particles within its support (fluid) */
-    amsph_buffer *shift;     /* particle shifting displacements, three reals per particle (fluid.shifting) */
+    amsph_buffer *shift;     /* shifting displacements, three reals per particle (amsph_fluid_shifts) */
     amsph_buffer *contact_pull; /* four reals per particle: the surface tension's pull and its weight
                                    (surface with grains; kernels/surface.cl surface_contact_pull) */
     amsph_buffer *surface_blocks[2]; /* an int per block of cells: the blocks' distance from the

@@ -619,8 +619,18 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * the surface is kept (Lind et al.), the normal taken along the plain
  * colour gradient sum_b V_b grad_a W_ab. The fields are not corrected for
  * the displacement (it is a small fraction of dx per step: |u| dt is below
- * 0.25 h times the Mach number). shift[a] is the displacement (0 for walls
- * and solids), added to the positions by the drift kernel. */
+ * 0.25 h times the Mach number).
+ * With a transport pressure p_tv, the displacement adds that of Adami, Hu &
+ * Adams's (2013) transport velocity u~ = u + (dt / 2) a~ over the step,
+ *   a~_a = -(p_tv / m_a) sum_b (V_a^2 + V_b^2) grad_a W_ab   (their Eq. 13),
+ *   delta r_a += (dt^2 / 2) a~_a,
+ * the pair pressure term of the multiphase form (Fuchs et al. 2022 Eq. 23)
+ * at a uniform p_tv: what `background_pressure` adds to the force, moved
+ * from the momentum to the positions. It too pushes particles from crowded
+ * to sparse places, with no force on a body the particles pass; their
+ * extra stress (Adami's A = rho u (u~ - u)) is left out. shift[a] is the
+ * displacement (0 for walls and solids), added to the positions by the
+ * drift kernel. */
 KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real *velocity,
                                   GLOBAL const real *density, GLOBAL const real *mass,
                                   GLOBAL const real *gamma, GLOBAL const real *smoothing_length, GLOBAL const int *kind,
@@ -638,6 +648,8 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             const real w_dx = smoothing_w_at(&scale, p.dx);
             real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+            real transport[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* sum_b (V_a^2 + V_b^2) grad_a W_ab */
+            const real volume_a = mass[a] / density[a];
             int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
             const real support = SUPPORT_OVER_H * p.h_max;
             const real h_a = particle_smoothing_length(smoothing_length, a, &p);
@@ -651,13 +663,16 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 const real r = sqrt(r2);
                 const smoothing_scale scale_ab =
                     pair_smoothing_scale(&scale, h_a, particle_smoothing_length(smoothing_length, b, &p), &p);
-                const real fv = smoothing_grad_factor_at(&scale_ab, r) * mass[b] / density[b]; /* V_b grad_a W_ab = fv r_ab */
+                const real f = smoothing_grad_factor_at(&scale_ab, r); /* grad_a W_ab = f r_ab */
+                const real volume_b = mass[b] / density[b];
+                const real fv = f * volume_b;
                 const real w_dx_ab = p.smoothing_length == SMOOTHING_VOLUME ? smoothing_w_at(&scale_ab, p.dx) : w_dx;
                 const real w = smoothing_w_at(&scale_ab, r) / w_dx_ab;
                 const real clumping = REAL(1.0) + REAL(0.2) * (w * w) * (w * w);
                 for (int d = 0; d < 3; ++d) {
                     grad_c[d] += clumping * fv * r_ab[d];
                     colour[d] += fv * r_ab[d];
+                    transport[d] += (volume_a * volume_a + volume_b * volume_b) * f * r_ab[d];
                 }
                 near_surface |= kind[b] == KIND_FLUID && gamma[b] < SHIFTING_SURFACE_SHEPARD;
             }
@@ -666,8 +681,9 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 u_a[d] = velocity[3 * a + d];
             const real speed = sqrt(dot3(u_a, u_a));
             const real diffusivity = p.shifting * h_a * speed * dt;
+            const real transport_step = REAL(0.5) * dt * dt * p.transport_pressure / mass[a];
             for (int d = 0; d < 3; ++d)
-                delta_r[d] = -diffusivity * grad_c[d];
+                delta_r[d] = -diffusivity * grad_c[d] - transport_step * transport[d];
             const real colour_norm = sqrt(dot3(colour, colour));
             if (near_surface && colour_norm > REAL(0.0)) {
                 const real normal_part = dot3(delta_r, colour) / (colour_norm * colour_norm);

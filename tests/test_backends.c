@@ -53,7 +53,8 @@ static const char *case_3d =
     "  - {shape: box, kind: wall, material: water, min: [0, 0, 0], max: [0.5, 0.5, 0.075]}\n";
 
 /* The fluid module: a small dam break in 2D (the fluid section given), and
- * a 3D column in a tank (with particle shifting). */
+ * a 3D column in a tank (with particle shifting and the transport
+ * velocity). */
 #define DAMBREAK_2D(fluid)                                                                         \
     "dimension: 2\n"                                                                               \
     "domain: {min: [-0.05, -0.05], max: [0.65, 0.45]}\n"                                           \
@@ -85,7 +86,7 @@ static const char *case_fluid_3d =
     "end_time: 0.03\n"
     "output_interval: 0.03\n"
     "gravity: [0, 0, -9.81]\n"
-    "fluid: {shifting: 2}\n"
+    "fluid: {shifting: 2, transport_pressure: 1e4}\n"
     "materials:\n"
     "  - {name: water, density: 1000, viscosity: 0.001, sound_speed: 20}\n"
     "geometry:\n"

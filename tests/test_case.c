@@ -214,7 +214,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "continuity, pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, transport_pressure, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -223,6 +223,8 @@ static const bad_case bad_cases[] = {
     {"fluid cfl above 1", BASE2 "fluid: {cfl: 2}\n", NAME ":17: 'fluid.cfl' must be in (0, 1], got 2"},
     {"fluid shifting negative", BASE2 "fluid: {shifting: -1}\n",
      NAME ":17: 'fluid.shifting' must be in [0, 10], got -1"},
+    {"fluid transport pressure negative", BASE2 "fluid: {transport_pressure: -1e4}\n",
+     NAME ":17: 'fluid.transport_pressure' must be >= 0, got -1e4"},
     {"fluid not a map", BASE2 "fluid: [1]\n", NAME ":17: 'fluid' must be a map, got a list"},
     {"smoothing length unknown form", BASE2 "fluid: {smoothing_length: adaptive}\n",
      NAME ":17: 'fluid.smoothing_length' must be one of fixed, volume; got 'adaptive'"},
@@ -370,6 +372,10 @@ static const bad_case bad_cases[] = {
     {"verlet with shifting", SURFACE_MAT("") "fluid: {integration: verlet, pressure_gradient: symmetric, shifting: 2}\n",
      NAME ":16: 'fluid.integration: verlet' serves the fluid module alone with 'pressure_gradient: symmetric', "
           "and this case has 'shifting'; use 'integration: leapfrog'"},
+    {"verlet with the transport velocity",
+     SURFACE_MAT("") "fluid: {integration: verlet, pressure_gradient: symmetric, transport_pressure: 1e4}\n",
+     NAME ":16: 'fluid.integration: verlet' serves the fluid module alone with 'pressure_gradient: symmetric', "
+          "and this case has 'transport_pressure'; use 'integration: leapfrog'"},
     {"verlet above its CFL", SURFACE_MAT("") "fluid: {integration: verlet, pressure_gradient: symmetric, cfl: 0.25}\n",
      NAME ":16: 'fluid.cfl' is 0.25; with 'integration: verlet' it must be at most 0.2 (the two-step scheme's "
           "stability limit, omega dt < 1, is half the leapfrog's)"},

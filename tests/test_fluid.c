@@ -795,17 +795,18 @@ static void test_pressure_gradient_balances_gravity(void)
 }
 
 
-/* Particle shifting (kernels/fluid.cl shifting_displacement) on a 2D
- * lattice moving at u = (1, 0) m/s, 20 x 20 particles, periodic in x and,
- * for the interior case, in y (else the top is a free surface and the
- * bottom a wall). */
+/* Particle shifting and the transport velocity (kernels/fluid.cl
+ * shifting_displacement) on a 2D lattice moving at u = (1, 0) m/s, 20 x 20
+ * particles, periodic in x and, for the interior case, in y (else the top
+ * is a free surface and the bottom a wall); the fluid section's settings
+ * are the test's. */
 static const char *shifting_case =
     "dimension: 2\n"
     "domain: {min: [0, %s], max: [1, %s], periodic: [true, %s]}\n"
     "dx: 0.05\n"
     "end_time: 1\n"
     "output_interval: 1\n"
-    "fluid: {shifting: %g}\n"
+    "fluid: {%s}\n"
     "materials:\n"
     "  - {name: water, density: 1000, sound_speed: 10}\n"
     "geometry:\n"
@@ -818,15 +819,16 @@ static const char *shifting_wall =
 
 /* One shifting pass on the scene, after moving the particles by
  * `move(x, id)`; the displacement of each particle by id (x and y), and the
- * positions before it. */
+ * positions before it; with `acceleration`, the fluid's acceleration at
+ * those positions by id, before the pass; no pass without `shift`. */
 typedef void (*lattice_move)(double x[2], unsigned id, double dx);
 
-static int shift_once(int periodic, double coefficient, lattice_move move, double (*shift)[2],
-                      double (*before)[2], int *n)
+static int shift_once(int periodic, const char *fluid, lattice_move move, double (*shift)[2],
+                      double (*before)[2], int *n, double (*acceleration)[2])
 {
     char text[1024], err[512];
     snprintf(text, sizeof text, shifting_case, periodic ? "0" : "-0.2", periodic ? "1" : "1.5",
-             periodic ? "true" : "false", coefficient, periodic ? "" : shifting_wall);
+             periodic ? "true" : "false", fluid, periodic ? "" : shifting_wall);
     amsph_case c;
     if (amsph_case_parse(text, strlen(text), "shifting.yaml", &c, err, sizeof err))
         return amsph_fail("%s", err);
@@ -848,16 +850,22 @@ static int shift_once(int periodic, double coefficient, lattice_move move, doubl
     amsph_host_free(&h);
     AMSPH_CHECK(amsph_grid_sort(&s.grid, &s.particles));
     AMSPH_CHECK(amsph_fluid_density(&s, 0.0)); /* the Shepard sums at these positions */
+    if (acceleration)
+        AMSPH_CHECK(amsph_fluid_forces(&s));
     AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
     for (int i = 0; i < h.n; ++i) {
         const unsigned id = ((unsigned *)h.data[AMSPH_FIELD_ID])[i];
-        for (int d = 0; d < 2; ++d)
+        for (int d = 0; d < 2; ++d) {
             before[id][d] = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d];
+            if (acceleration)
+                acceleration[id][d] = amsph_host_real(&h, AMSPH_FIELD_ACCELERATION)[3 * i + d];
+        }
     }
     amsph_host_free(&h);
-    AMSPH_CHECK(amsph_fluid_shift(&s, SHIFT_DT));
+    if (shift)
+        AMSPH_CHECK(amsph_fluid_shift(&s, SHIFT_DT));
     AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
-    for (int i = 0; i < h.n; ++i) {
+    for (int i = 0; i < h.n && shift; ++i) {
         const unsigned id = ((unsigned *)h.data[AMSPH_FIELD_ID])[i];
         for (int d = 0; d < 2; ++d)
             shift[id][d] = amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d] - before[id][d];
@@ -906,8 +914,8 @@ static void test_shifting(void)
     enum { MAX = 1200 };
     static double one[MAX][2], two[MAX][2], surface[MAX][2], x[MAX][2];
     int n = 0;
-    CHECK_OK(shift_once(1, 1.0, displace_interior, one, x, &n));
-    CHECK_OK(shift_once(1, 2.0, displace_interior, two, x, &n));
+    CHECK_OK(shift_once(1, "shifting: 1", displace_interior, one, x, &n, NULL));
+    CHECK_OK(shift_once(1, "shifting: 2", displace_interior, two, x, &n, NULL));
     const double dx = 0.05, moved[2] = {0.2 * dx, 0.1 * dx};
     CHECK(dot2(one[210], moved) < -0.01 * dx * dx, "the moved particle is not shifted back: (%g, %g) m",
           one[210][0], one[210][1]);
@@ -924,7 +932,7 @@ static void test_shifting(void)
     /* to the rounding of the stored positions (float: 6e-8 m at coordinates below 1 m) */
     CHECK(linear < (AMSPH_DOUBLE ? 1e-12 : 2.5e-7), "the shift is not linear in A (%g m off, of %g m)", linear,
           sqrt(dot2(one[210], one[210])));
-    CHECK_OK(shift_once(0, 2.0, displace_top, surface, x, &n));
+    CHECK_OK(shift_once(0, "shifting: 2", displace_top, surface, x, &n, NULL));
     double top_normal = 0.0, wall = 0.0;
     for (int id = 380; id < 400; ++id)
         if (abs(id - 390) > 5)
@@ -938,9 +946,45 @@ static void test_shifting(void)
     CHECK(wall == 0.0, "walls move by %g m", wall);
 }
 
+/* The transport velocity's displacement (fluid.transport_pressure, Adami
+ * et al. 2013 Eq. 13) is the multiphase pressure force of a uniform
+ * pressure p_tv (Fuchs et al. 2022 Eq. 23) put into the positions,
+ * (dt^2 / 2) a: on the lattice with the particle of id 210 moved, one
+ * pass with p_tv = 1e4 Pa moves every particle by (dt^2 / 2) times the
+ * acceleration that `background_pressure: 1e4` gives the same particles
+ * at rest in density (p = p_b everywhere), to float rounding; the moved
+ * particle goes back towards its site and the far lattice stays put. */
+static void test_transport_velocity(void)
+{
+    enum { MAX = 1200 };
+    static double shift[MAX][2], acceleration[MAX][2], x[MAX][2];
+    int n = 0;
+    CHECK_OK(shift_once(1, "pressure_gradient: multiphase, transport_pressure: 1e4", displace_interior, shift, x,
+                        &n, NULL));
+    CHECK_OK(shift_once(1, "pressure_gradient: multiphase, background_pressure: 1e4", displace_interior, NULL, x,
+                        &n, acceleration));
+    const double dx = 0.05, moved[2] = {0.2 * dx, 0.1 * dx};
+    double largest = 0.0, off = 0.0, far = 0.0;
+    for (int id = 0; id < n; ++id) {
+        const int row = id / 20, column = id % 20;
+        largest = fmax(largest, sqrt(dot2(shift[id], shift[id])));
+        for (int d = 0; d < 2; ++d)
+            off = fmax(off, fabs(shift[id][d] - 0.5 * SHIFT_DT * SHIFT_DT * acceleration[id][d]));
+        if (abs(row - 10) > 5 || abs(column - 10) > 5)
+            far = fmax(far, sqrt(dot2(shift[id], shift[id])));
+    }
+    CHECK(dot2(shift[210], moved) < -0.5 * sqrt(dot2(shift[210], shift[210]) * dot2(moved, moved)),
+          "the moved particle is not moved back towards its site: (%g, %g) m", shift[210][0], shift[210][1]);
+    CHECK(largest > 0.0 && off < 1e-4 * largest,
+          "the displacement is %g m off (dt^2 / 2) a of the background pressure's force (largest %g m)", off,
+          largest);
+    CHECK(far < 1e-4 * largest, "the unperturbed lattice moves by %g m (the moved particle by %g m)", far, largest);
+}
+
 int main(void)
 {
     test_shifting();
+    test_transport_velocity();
     test_stacked_hydrostatic();
     test_pressure_gradient_balances_gravity();
     test_tensile_correction();
