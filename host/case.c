@@ -132,6 +132,8 @@ static const choice diffusion_choices[] = {{"none", DIFFUSION_NONE, 0},
                                            {"russell", DIFFUSION_RUSSELL, 0},
                                            {"fourtakas", DIFFUSION_FOURTAKAS, 0},
                                            {NULL, 0, 0}};
+static const choice gas_density_choices[] = {
+    {"continuity", GAS_DENSITY_CONTINUITY, 0}, {"summation", GAS_DENSITY_SUMMATION, 0}, {NULL, 0, 0}};
 static const choice continuity_choices[] = {
     {"plain", CONTINUITY_PLAIN, 0}, {"corrected", CONTINUITY_CORRECTED, 0}, {NULL, 0, 0}};
 static const choice pressure_choices[] = {{"renormalised", PRESSURE_RENORMALISED, 0},
@@ -345,6 +347,11 @@ static const key_spec specs[] = {
      .lo = 0, .hi = 10, .def = 0, .offset = FLUID(shifting),
      .doc = "Particle shifting coefficient A: fluid particles move by -A h |u| dt grad C after each step "
             "(Skillen et al. 2013; Lind et al. 2012, tangential only near free surfaces); 2 is usual; 0: off"},
+    {.section = SEC_FLUID, .key = "gas_density", .type = VT_CHOICE, .choices = gas_density_choices,
+     .def = GAS_DENSITY_CONTINUITY, .offset = FLUID(gas_density),
+     .doc = "Density of a gas material: from the continuity equation (as a liquid's), or summed over the "
+            "neighbours, rho_a = m_a sum_b W_ab over that sum on the initial lattice (Adami et al. 2013), "
+            "which follows the positions, the transport velocity's displacement included"},
     {.section = SEC_FLUID, .key = "transport_pressure", .type = VT_NUMBER, .unit = "Pa", .flags = F_FROM_LO,
      .lo = 0, .def = 0, .offset = FLUID(transport_pressure),
      .doc = "Background pressure of the transport velocity (Adami et al. 2013 Eq. 13): fluid particles move "

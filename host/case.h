@@ -165,6 +165,7 @@ typedef struct {
     double damping_rate;        /* relaxation: u *= exp(-rate dt) each step, 1/s, default 0 */
     double damping_end;         /* ... while t < damping_end, s, default 0 */
     double shifting;            /* particle shifting coefficient A (D = A h |u| dt), default 0: off */
+    int gas_density;            /* GAS_DENSITY_*, default continuity */
     double transport_pressure;  /* background pressure of the transport velocity, Pa, default 0: off */
     int smoothing_length;       /* SMOOTHING_*, default SMOOTHING_FIXED */
     double max_smoothing_ratio; /* SMOOTHING_VOLUME: the largest h / h0 the grid serves, default 1.1 */

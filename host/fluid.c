@@ -62,6 +62,7 @@ int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h)
     p->dx = (amsph_real)s->config.dx;
     p->shifting = (amsph_real)f->shifting;
     p->transport_pressure = (amsph_real)f->transport_pressure;
+    p->gas_density = f->gas_density;
     p->barrier_stiffness = (amsph_real)f->barrier_stiffness;
     p->barrier_damping = (amsph_real)f->barrier_damping;
     p->barrier_distance = (amsph_real)f->barrier_distance;
@@ -154,6 +155,38 @@ int amsph_fluid_reference_density(amsph_sim *s)
                         field(s, AMSPH_FIELD_REFERENCE_DENSITY));
 }
 
+/* Gamma_lattice of kernels/fluid.cl lattice_shepard_sum, into s->lattice_shepard. */
+static int compute_lattice_shepard(amsph_sim *s)
+{
+    amsph_buffer *out = NULL;
+    amsph_real value = 0;
+    int status = amsph_buffer_alloc(s->backend, sizeof value, &out);
+    if (status == 0)
+        status = AMSPH_LAUNCH(s->backend, "lattice_shepard_sum", 1, amsph_arg_int(1),
+                              amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_buffer(out));
+    if (status == 0)
+        status = amsph_download(s->backend, out, 0, sizeof value, &value);
+    if (out)
+        amsph_buffer_free(s->backend, out);
+    s->lattice_shepard = value;
+    return status;
+}
+
+/* The gas's density summed over its neighbours (fluid.gas_density:
+ * summation), in place of the continuity's. */
+static int sum_gas_density(amsph_sim *s)
+{
+    if (s->lattice_shepard == 0.0)
+        AMSPH_CHECK(compute_lattice_shepard(s));
+    const int n = s->particles.n;
+    return AMSPH_LAUNCH(s->backend, "summation_density", n, field(s, AMSPH_FIELD_POSITION), field(s, AMSPH_FIELD_MASS),
+                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
+                        amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
+                        amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
+                        amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_real(s->lattice_shepard),
+                        field(s, AMSPH_FIELD_DENSITY));
+}
+
 int amsph_fluid_density(amsph_sim *s, double dt)
 {
     amsph_backend *b = s->backend;
@@ -174,6 +207,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->others),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), amsph_arg_real(dt),
                              field(s, AMSPH_FIELD_DENSITY)));
+    if (s->fluid.gas_density == GAS_DENSITY_SUMMATION)
+        AMSPH_CHECK(sum_gas_density(s));
     return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
 }
 

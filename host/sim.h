@@ -101,6 +101,8 @@ typedef struct {
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */
+    double lattice_shepard;       /* Gamma of a particle inside the initial lattice (fluid.gas_density:
+                                     summation), 0 until amsph_fluid_density first needs it */
     double lightest_fluid_mass;   /* of the scene's fluid particles, kg (2D: kg/m); the barrier's step limit */
     thermal_params thermal;
     amsph_buffer *thermal_table; /* kernels/thermal_table.h */

@@ -486,6 +486,61 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     }
 }
 
+/* The Shepard sum of a particle inside a block of the initial lattice,
+ * Gamma_lattice = dx^d sum_n W(|n| dx, h0) over the lattice points n dx
+ * within the support, the point itself included. One item. */
+KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
+{
+    FOR_EACH_ITEM(i, n)
+    {
+        const smoothing_scale scale = smoothing_scale_of(p.h);
+        const int reach = (int)(SUPPORT_OVER_H * p.h / p.dx);
+        const int reach_z = AMSPH_DIM == 3 ? reach : 0;
+        real sum = REAL(0.0);
+        for (int x = -reach; x <= reach; ++x)
+            for (int y = -reach; y <= reach; ++y)
+                for (int z = -reach_z; z <= reach_z; ++z)
+                    sum += smoothing_w_at(&scale, p.dx * sqrt((real)(x * x + y * y + z * z)));
+        for (int d = 0; d < AMSPH_DIM; ++d)
+            sum *= p.dx;
+        shepard[i] = sum;
+    }
+}
+
+/* The density of a gas particle summed over its neighbours (fluid.gas_density:
+ * summation; Adami, Hu & Adams 2013), in place of the continuity's, after it:
+ *   rho_a = m_a sum_b W_ab / Gamma_lattice
+ * every particle within the support at h0 counted (a itself, fluid of every
+ * phase, walls, solids and grains), Gamma_lattice = lattice_shepard_sum, so
+ * that a particle of mass rho0 dx^d inside the initial lattice has rho0.
+ * It follows the positions, whatever moved them: on an evenly spaced gas it
+ * is rho0, whatever the flow did before. */
+KERNEL void summation_density(GLOBAL const real *position, GLOBAL const real *mass, GLOBAL const int *kind,
+                              GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
+                              GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
+                              real lattice_shepard, GLOBAL real *density)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        if (kind[a] == KIND_FLUID && material_is_gas(materials, material[a])) {
+            int cc[3];
+            grid_cell_coords(&g, cell[a], cc);
+            const smoothing_scale scale = smoothing_scale_of(p.h);
+            const real support = SUPPORT_OVER_H * p.h;
+            real x_a[3];
+            grid_point(position, a, x_a);
+            real number = REAL(0.0);
+            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
+            {
+                real r_ab[3], r2;
+                if (grid_pair_within(&run, position, b, support * support, r_ab, &r2))
+                    number += smoothing_w_at(&scale, sqrt(r2));
+            }
+            density[a] = mass[a] * number / lattice_shepard;
+        }
+    }
+}
+
 /* The options of the fluid-only scenes (dam breaks, tanks; DualSPHysics's
  * scheme): fixed h, the symmetric pressure force, artificial viscosity,
  * the plain continuity sum, neither the tensile correction nor a barrier,

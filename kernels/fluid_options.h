@@ -20,6 +20,9 @@
 #define CONTINUITY_PLAIN 0     /* rho_a sum_b u_ab . grad_a W_ab V_b (Russell 2018 Eq. 3.14) */
 #define CONTINUITY_CORRECTED 1 /* the same with the kernel gradient corrected (Bonet & Lok 1999) */
 
+#define GAS_DENSITY_CONTINUITY 0 /* the gas's density from the continuity equation, as the liquid's */
+#define GAS_DENSITY_SUMMATION 1  /* rho_a = m_a sum_b W_ab (Adami, Hu & Adams 2013), over the lattice's sum */
+
 #define SMOOTHING_FIXED 0  /* h = h_over_dx dx for every particle */
 #define SMOOTHING_VOLUME 1 /* fluid particles: h_a = h0 (V_a / V0)^(1/d) (Russell 2018 Eq. 3.54) */
 

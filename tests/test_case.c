@@ -214,7 +214,7 @@ static const bad_case bad_cases[] = {
     {"fluid unknown key", BASE2 "fluid: {delta_sph: 0.1}\n",
      NAME ":17: unknown key 'delta_sph' in fluid (allowed: density_diffusion, delta, "
           "continuity, pressure_gradient, viscosity, artificial_alpha, background_pressure, "
-          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, transport_pressure, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
+          "clamp_negative_pressure, tensile_correction, wall_slip, cfl, dt_min, min_pair_distance, max_density_error, damping_rate, damping_end, shifting, gas_density, transport_pressure, smoothing_length, max_smoothing_ratio, integration, verlet_steps, barrier)"},
     {"fluid bad choice", BASE2 "fluid: {density_diffusion: antuono}\n",
      NAME ":17: 'fluid.density_diffusion' must be one of none, molteni, russell, fourtakas; got "
           "'antuono'"},
@@ -223,6 +223,8 @@ static const bad_case bad_cases[] = {
     {"fluid cfl above 1", BASE2 "fluid: {cfl: 2}\n", NAME ":17: 'fluid.cfl' must be in (0, 1], got 2"},
     {"fluid shifting negative", BASE2 "fluid: {shifting: -1}\n",
      NAME ":17: 'fluid.shifting' must be in [0, 10], got -1"},
+    {"fluid gas density unknown form", BASE2 "fluid: {gas_density: summed}\n",
+     NAME ":17: 'fluid.gas_density' must be one of continuity, summation; got 'summed'"},
     {"fluid transport pressure negative", BASE2 "fluid: {transport_pressure: -1e4}\n",
      NAME ":17: 'fluid.transport_pressure' must be >= 0, got -1e4"},
     {"fluid not a map", BASE2 "fluid: [1]\n", NAME ":17: 'fluid' must be a map, got a list"},
