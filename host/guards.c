@@ -53,17 +53,10 @@ static int report(amsph_sim *s, int code, int i)
         return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest "
                           "neighbour (limit %.3g dx)",
                           where, (double)nearest / dx, f->min_pair_distance);
-    int material;
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_MATERIAL, i, &material));
-    const int summed = f->gas_density == GAS_DENSITY_SUMMATION &&
-                       s->config.materials[material].phase == AMSPH_MATERIAL_GAS;
     return amsph_fail("guard 'density error' failed: %s has density %.6g kg/m^3, %.3g%% from "
-                      "rho0 = %.6g (limit %.3g%%); %s",
+                      "rho0 = %.6g (limit %.3g%%); raise sound_speed or max_density_error",
                       where, (double)rho, 100.0 * ((double)rho - rho0) / rho0, (double)rho0,
-                      100.0 * f->max_density_error,
-                      summed ? "its density is summed (fluid.gas_density: summation), which falls beside a void: "
-                               "use 'gas_density: continuity' or raise max_density_error"
-                             : "raise sound_speed or max_density_error");
+                      100.0 * f->max_density_error);
 }
 
 int amsph_guards_check(amsph_sim *s)
