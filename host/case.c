@@ -351,7 +351,8 @@ static const key_spec specs[] = {
      .def = GAS_DENSITY_CONTINUITY, .offset = FLUID(gas_density),
      .doc = "Density of a gas material: from the continuity equation (as a liquid's), or summed over the "
             "neighbours, rho_a = m_a sum_b W_ab over that sum on the initial lattice (Adami et al. 2013), "
-            "which follows the positions, the transport velocity's displacement included"},
+            "which follows the positions, the transport velocity's displacement included; a particle whose "
+            "support is cut (Shepard sum below 0.95) keeps the continuity's"},
     {.section = SEC_FLUID, .key = "transport_pressure", .type = VT_NUMBER, .unit = "Pa", .flags = F_FROM_LO,
      .lo = 0, .def = 0, .offset = FLUID(transport_pressure),
      .doc = "Background pressure of the transport velocity (Adami et al. 2013 Eq. 13): fluid particles move "

@@ -184,7 +184,7 @@ static int sum_gas_density(amsph_sim *s)
                         amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
                         amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
                         amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_real(s->lattice_shepard),
-                        field(s, AMSPH_FIELD_DENSITY));
+                        field(s, AMSPH_FIELD_SHEPARD), field(s, AMSPH_FIELD_DENSITY));
 }
 
 int amsph_fluid_density(amsph_sim *s, double dt)

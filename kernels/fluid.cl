@@ -486,6 +486,13 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
     }
 }
 
+/* Shepard sum Gamma below which a fluid particle counts as lying on a free
+ * surface (particle shifting, the summed gas density): on a lattice with
+ * Wendland C2 at h = 1.2 dx, 0.823 on a flat face, 1.017 one layer below it
+ * and 1.018 in the interior (wider kernels reach further in: shifting
+ * spreads the flag to every fluid neighbour within the support). */
+#define FREE_SURFACE_SHEPARD REAL(0.95)
+
 /* The Shepard sum of a particle inside a block of the initial lattice,
  * Gamma_lattice = dx^d sum_n W(|n| dx, h0) over the lattice points n dx
  * within the support, the point itself included. One item. */
@@ -514,15 +521,19 @@ KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
  * phase, walls, solids and grains), Gamma_lattice = lattice_shepard_sum, so
  * that a particle of mass rho0 dx^d inside the initial lattice has rho0.
  * It follows the positions, whatever moved them: on an evenly spaced gas it
- * is rho0, whatever the flow did before. */
+ * is rho0, whatever the flow did before. Where the support is cut (Gamma_a
+ * of the continuity pass below FREE_SURFACE_SHEPARD: a void beside the
+ * particle, such as a gap a moving grain opens) the sum would fall with the
+ * missing neighbours, by a third at a corner; there the particle keeps the
+ * continuity's density. */
 KERNEL void summation_density(GLOBAL const real *position, GLOBAL const real *mass, GLOBAL const int *kind,
                               GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
                               GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                              real lattice_shepard, GLOBAL real *density)
+                              real lattice_shepard, GLOBAL const real *gamma, GLOBAL real *density)
 {
     FOR_EACH_ITEM(a, n)
     {
-        if (kind[a] == KIND_FLUID && material_is_gas(materials, material[a])) {
+        if (kind[a] == KIND_FLUID && material_is_gas(materials, material[a]) && gamma[a] >= FREE_SURFACE_SHEPARD) {
             int cc[3];
             grid_cell_coords(&g, cell[a], cc);
             const smoothing_scale scale = smoothing_scale_of(p.h);
@@ -652,13 +663,6 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
     }
 }
 
-/* Shepard sum Gamma below which a fluid particle counts as lying on a free
- * surface for particle shifting: on a lattice with Wendland C2 at h = 1.2 dx,
- * 0.823 on a flat face, 1.017 one layer below it and 1.018 in the interior
- * (wider kernels reach further in: the flag spreads to every fluid
- * neighbour within the support, below). */
-#define SHIFTING_SURFACE_SHEPARD REAL(0.95)
-
 /* Particle shifting (Lind et al. 2012; Skillen et al. 2013): after a step,
  * each fluid particle moves down the gradient of the particle concentration,
  *   delta r_a = -D grad C_a,   D = A h_a |u_a| dt              (Skillen et al.)
@@ -669,7 +673,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * closer it gets. Walls and solids count as material in C, so a particle
  * next to a wall is not pushed into it. Near a free surface (the particle or
  * a fluid neighbour within the support has Gamma below
- * SHIFTING_SURFACE_SHEPARD) C is truncated and grad C points into the fluid,
+ * FREE_SURFACE_SHEPARD) C is truncated and grad C points into the fluid,
  * which would push the surface outwards; there only the part tangential to
  * the surface is kept (Lind et al.), the normal taken along the plain
  * colour gradient sum_b V_b grad_a W_ab. The fields are not corrected for
@@ -705,7 +709,7 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
             real colour[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
             real transport[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* sum_b (V_a^2 + V_b^2) grad_a W_ab */
             const real volume_a = mass[a] / density[a];
-            int near_surface = gamma[a] < SHIFTING_SURFACE_SHEPARD;
+            int near_surface = gamma[a] < FREE_SURFACE_SHEPARD;
             const real support = SUPPORT_OVER_H * p.h_max;
             const real h_a = particle_smoothing_length(smoothing_length, a, &p);
             real x_a[3];
@@ -729,7 +733,7 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                     colour[d] += fv * r_ab[d];
                     transport[d] += (volume_a * volume_a + volume_b * volume_b) * f * r_ab[d];
                 }
-                near_surface |= kind[b] == KIND_FLUID && gamma[b] < SHIFTING_SURFACE_SHEPARD;
+                near_surface |= kind[b] == KIND_FLUID && gamma[b] < FREE_SURFACE_SHEPARD;
             }
             real u_a[3];
             for (int d = 0; d < 3; ++d)
