@@ -155,9 +155,12 @@ int amsph_fluid_reference_density(amsph_sim *s)
                         field(s, AMSPH_FIELD_REFERENCE_DENSITY));
 }
 
-/* Gamma_lattice of kernels/fluid.cl lattice_shepard_sum, into s->lattice_shepard. */
-static int compute_lattice_shepard(amsph_sim *s)
+/* Gamma_lattice of kernels/fluid.cl lattice_shepard_sum, into the fluid's
+ * parameters, for the gas's summed density (fluid.gas_density: summation). */
+int amsph_fluid_start(amsph_sim *s)
 {
+    if (s->fluid.gas_density != GAS_DENSITY_SUMMATION)
+        return 0;
     amsph_buffer *out = NULL;
     amsph_real value = 0;
     int status = amsph_buffer_alloc(s->backend, sizeof value, &out);
@@ -168,23 +171,8 @@ static int compute_lattice_shepard(amsph_sim *s)
         status = amsph_download(s->backend, out, 0, sizeof value, &value);
     if (out)
         amsph_buffer_free(s->backend, out);
-    s->lattice_shepard = value;
+    s->fluid.lattice_shepard = value;
     return status;
-}
-
-/* The gas's density summed over its neighbours (fluid.gas_density:
- * summation), in place of the continuity's. */
-static int sum_gas_density(amsph_sim *s)
-{
-    if (s->lattice_shepard == 0.0)
-        AMSPH_CHECK(compute_lattice_shepard(s));
-    const int n = s->particles.n;
-    return AMSPH_LAUNCH(s->backend, "summation_density", n, field(s, AMSPH_FIELD_POSITION), field(s, AMSPH_FIELD_MASS),
-                        field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->grid.cell),
-                        amsph_arg_int(n), amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                        amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->materials),
-                        amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_real(s->lattice_shepard),
-                        field(s, AMSPH_FIELD_SHEPARD), field(s, AMSPH_FIELD_DENSITY));
 }
 
 int amsph_fluid_density(amsph_sim *s, double dt)
@@ -202,13 +190,12 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              amsph_arg_buffer(s->grid.cell_start), amsph_arg_buffer(s->grid.fluid_count),
                              amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
-                             amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others)));
+                             amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others), amsph_arg_buffer(s->work)));
+    /* s->work: the summed gas density, from continuity to advance_density */
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->others),
-                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_int(n), amsph_arg_real(dt),
-                             field(s, AMSPH_FIELD_DENSITY)));
-    if (s->fluid.gas_density == GAS_DENSITY_SUMMATION)
-        AMSPH_CHECK(sum_gas_density(s));
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_buffer(s->work), amsph_arg_int(n),
+                             amsph_arg_real(dt), field(s, AMSPH_FIELD_DENSITY)));
     return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
 }
 

@@ -8,11 +8,15 @@
 /* Fills s->fluid from the case and adds the module's fields, among them
  * every particle's reference density rho0(T) at its initial temperature. */
 int amsph_fluid_setup(amsph_sim *s, amsph_host_particles *h);
+/* Once the device is ready: the constants computed there (the lattice's
+ * Shepard sum of the summed gas density). */
+int amsph_fluid_start(amsph_sim *s);
 /* rho0(T) of every particle from its temperature (after the temperature
  * changed; only where s->reference_density_varies). */
 int amsph_fluid_reference_density(amsph_sim *s);
 /* After the drift: continuity (with the half-step velocity) and Shepard
- * sums, then rho += dt drho/dt for fluid particles (dt = 0 at the start). */
+ * sums, then rho += dt drho/dt for fluid particles (dt = 0 at the start),
+ * or the summed density of a gas (fluid.gas_density: summation). */
 int amsph_fluid_density(amsph_sim *s, double dt);
 /* Equation of state, wall states, then the acceleration of every fluid
  * particle. */

@@ -261,6 +261,8 @@ int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
     AMSPH_CHECK(prepare(c, b, s));
     AMSPH_CHECK(build_particles(s));
     AMSPH_CHECK(allocate_device_state(s));
+    if (c->fluid.enabled)
+        AMSPH_CHECK(amsph_fluid_start(s));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
     if (c->thermal.enabled)
         AMSPH_CHECK(amsph_thermal_start(s));

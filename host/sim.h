@@ -88,7 +88,8 @@ typedef struct {
     amsph_backend *backend; /* not owned */
     amsph_particles particles;
     amsph_grid grid;
-    amsph_buffer *work;      /* one real per particle, for reductions */
+    amsph_buffer *work;      /* one real per particle, from one launch to the next: reductions,
+                                the summed gas density (amsph_fluid_density) */
     amsph_buffer *closest;   /* nearest-neighbour distance per particle (fluid) */
     amsph_buffer *others;    /* an int per particle: the other particles within its support (fluid) */
     amsph_buffer *shift;     /* shifting displacements, three reals per particle (amsph_fluid_shifts) */
@@ -101,8 +102,6 @@ typedef struct {
     amsph_buffer *materials; /* per-material constants (kernels/materials.h) */
     fluid_params fluid;
     int reference_density_varies; /* rho0(T) is re-evaluated after every temperature change */
-    double lattice_shepard;       /* Gamma of a particle inside the initial lattice (fluid.gas_density:
-                                     summation), 0 until amsph_fluid_density first needs it */
     double lightest_fluid_mass;   /* of the scene's fluid particles, kg (2D: kg/m); the barrier's step limit */
     thermal_params thermal;
     amsph_buffer *thermal_table; /* kernels/thermal_table.h */

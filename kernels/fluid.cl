@@ -262,6 +262,7 @@ static inline int diffuses_departure(const fluid_params *p)
 /* The sums of continuity over the neighbours of a particle. */
 typedef struct {
     real shepard, drho, diffusion, nearest;
+    real kernel_sum; /* sum_b W(r_ab, h0), a gas particle with GAS_DENSITY_SUMMATION (summed_gas_density) */
     int fluid_near; /* a fluid particle other than a lies within the support */
     int others;     /* fluid a: the particles other than a within its support */
     /* CONTINUITY_CORRECTED: moment[3 i + j] = B_ij and rate[3 i + j] = D_ij
@@ -272,7 +273,7 @@ typedef struct {
 /* Sums over no neighbour yet. */
 static inline continuity_sums continuity_sums_none(void)
 {
-    const continuity_sums none = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, 0, 0, {REAL(0.0)}, {REAL(0.0)}};
+    const continuity_sums none = {REAL(0.0), REAL(0.0), REAL(0.0), NO_NEIGHBOUR, REAL(0.0), 0, 0, {REAL(0.0)}, {REAL(0.0)}};
     return none;
 }
 
@@ -318,9 +319,18 @@ static inline real corrected_density_rate(const continuity_sums *s, real rho_a)
     return rho_a * sum / det;
 }
 
+/* Is particle a a gas whose density is summed (fluid.gas_density: summation)? */
+static inline int gas_density_summed(int a, GLOBAL const int *kind, GLOBAL const int *material,
+                                     GLOBAL const real *materials, const fluid_params *p)
+{
+    return p->gas_density == GAS_DENSITY_SUMMATION && kind[a] == KIND_FLUID &&
+           material_is_gas(materials, material[a]);
+}
+
 /* What the continuity sums need of particle a. */
 typedef struct {
     int fluid, material;
+    int summed;            /* gas_density_summed */
     real rho, rho0, q;     /* q: the diffused quantity (density_diffusion_pair) */
     real h;                /* particle_smoothing_length */
     real u[3];
@@ -330,11 +340,13 @@ typedef struct {
 static inline continuity_side continuity_side_of(int a, GLOBAL const real *velocity, GLOBAL const real *density,
                                                  GLOBAL const real *reference_density,
                                                  GLOBAL const real *smoothing_length, GLOBAL const int *kind,
-                                                 GLOBAL const int *material, const fluid_params *p)
+                                                 GLOBAL const int *material, GLOBAL const real *materials,
+                                                 const fluid_params *p)
 {
     continuity_side s;
     s.fluid = kind[a] == KIND_FLUID;
     s.material = material[a];
+    s.summed = gas_density_summed(a, kind, material, materials, p);
     s.rho = density[a];
     s.rho0 = reference_density[a];
     s.q = s.rho - (diffuses_departure(p) ? s.rho0 : REAL(0.0));
@@ -359,6 +371,8 @@ PAIR_INLINE void add_continuity_pair(const continuity_side *s_a, int a, int b, c
         pair_smoothing_scale(&s_a->scale, s_a->h, particle_smoothing_length(smoothing_length, b, p), p);
     if (!p->one_pass) /* no force reads it there (fluid_forces) */
         sums->shepard += smoothing_w_at(&scale_ab, r) * v_b;
+    if (s_a->summed)
+        sums->kernel_sum += smoothing_w_at(&s_a->scale, r);
     sums->fluid_near |= b != a && kind[b] == KIND_FLUID;
     if (!s_a->fluid || b == a)
         return;
@@ -413,7 +427,7 @@ static inline void add_continuity_sums(int a, int first_set, int last_set, GLOBA
     grid_point(position, a, x_a);
     const real support = SUPPORT_OVER_H * p->h_max;
     const continuity_side s_a =
-        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, p);
+        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, materials, p);
     FOR_EACH_NEIGHBOUR_IN(b, run, g, cc, x_a, cell_start, GRID_CELLS_PER_SUPPORT, support, first_set, last_set)
     {
         real r_ab[3];
@@ -436,54 +450,6 @@ static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL co
     const real drho = p->continuity == CONTINUITY_CORRECTED ? corrected_density_rate(sums, density[a]) : sums->drho;
     return drho + p->delta * particle_smoothing_length(smoothing_length, a, p) *
                       material_value(materials, material[a], MATERIAL_SOUND_SPEED) * sums->diffusion;
-}
-
-/* Continuity and Shepard sums, evaluated after the drift with the half-step
- * velocity, so that the density advances like a position (see
- * kernels/integrate.cl):
- *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
- *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
- * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
- * between fluid particles of the same phase only. closest[a] is the distance
- * to the nearest other particle, for the guards, and others[a] the number of
- * other particles within the support, for the density update
- * (kernels/integrate.cl density_at_step_end). The rates are computed for fluid
- * particles. Gamma is computed for every fluid particle, and for the others
- * where a fluid particle lies within the support: only a fluid neighbour's
- * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
- * and such a particle loops over no neighbour: the walls, solids and grains
- * whose box of cells holds no fluid (grid_fluid_in_box: a tank's walls far
- * from the water, a substrate under a small melt pool, a powder bed beside
- * a droplet) cost that test only. With the symmetric and
- * multiphase pressure forms no force reads a non-fluid particle's Gamma,
- * and it is the sum over its non-wall neighbours only: positive where a
- * fluid particle is within the support, which is what wall_state asks of it. */
-KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
-                       GLOBAL const real *density, GLOBAL const real *reference_density,
-                       GLOBAL const real *smoothing_length,
-                       GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
-                       GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
-                       GLOBAL const int *fluid_count, GLOBAL const real *materials, fluid_params p,
-                       GLOBAL real *density_rate, GLOBAL real *gamma, GLOBAL real *closest, GLOBAL int *others)
-{
-    FOR_EACH_ITEM(a, n)
-    {
-        const int fluid_a = kind[a] == KIND_FLUID;
-        continuity_sums sums = continuity_sums_none();
-        int cc[3];
-        grid_cell_coords(&g, cell[a], cc);
-        if (fluid_a || grid_fluid_in_box(&g, cell_start, fluid_count, cc, GRID_CELLS_PER_SUPPORT))
-            add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
-                                density, reference_density, smoothing_length, mass, kind, material, cell, &g,
-                                cell_start, materials, &p, &sums);
-        if (!fluid_a && sums.fluid_near && p.pressure_gradient == PRESSURE_RENORMALISED)
-            add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
-                                smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
-        gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
-        density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
-        closest[a] = sums.nearest;
-        others[a] = sums.others;
-    }
 }
 
 /* Shepard sum Gamma below which a fluid particle counts as lying on a free
@@ -515,40 +481,75 @@ KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
 }
 
 /* The density of a gas particle summed over its neighbours (fluid.gas_density:
- * summation; Adami, Hu & Adams 2013), in place of the continuity's, after it:
+ * summation; Adami, Hu & Adams 2013), in place of the continuity's:
  *   rho_a = m_a sum_b W_ab / Gamma_lattice
  * every particle within the support at h0 counted (a itself, fluid of every
- * phase, walls, solids and grains), Gamma_lattice = lattice_shepard_sum, so
- * that a particle of mass rho0 dx^d inside the initial lattice has rho0.
- * It follows the positions, whatever moved them: on an evenly spaced gas it
- * is rho0, whatever the flow did before. Where the support is cut (Gamma_a
- * of the continuity pass below FREE_SURFACE_SHEPARD: a void beside the
+ * phase, walls, solids and grains; continuity_sums.kernel_sum), Gamma_lattice
+ * = lattice_shepard_sum, so that a particle of mass rho0 dx^d inside the
+ * initial lattice has rho0. It follows the positions, whatever moved them:
+ * on an evenly spaced gas it is rho0, whatever the flow did before. Where
+ * the support is cut (Gamma_a below FREE_SURFACE_SHEPARD: a void beside the
  * particle, such as a gap a moving grain opens) the sum would fall with the
- * missing neighbours, by a third at a corner; there the particle keeps the
- * continuity's density. */
-KERNEL void summation_density(GLOBAL const real *position, GLOBAL const real *mass, GLOBAL const int *kind,
-                              GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
-                              GLOBAL const int *cell_start, GLOBAL const real *materials, fluid_params p,
-                              real lattice_shepard, GLOBAL const real *gamma, GLOBAL real *density)
+ * missing neighbours, by a third at a corner; there, and for every other
+ * particle, 0: the continuity's density stands (advance_density). */
+static inline real summed_gas_density(const continuity_sums *sums, int a, GLOBAL const real *mass,
+                                      GLOBAL const int *kind, GLOBAL const int *material,
+                                      GLOBAL const real *materials, const fluid_params *p)
+{
+    return gas_density_summed(a, kind, material, materials, p) && sums->shepard >= FREE_SURFACE_SHEPARD
+               ? mass[a] * sums->kernel_sum / p->lattice_shepard
+               : REAL(0.0);
+}
+
+/* Continuity and Shepard sums, evaluated after the drift with the half-step
+ * velocity, so that the density advances like a position (see
+ * kernels/integrate.cl):
+ *   drho_a/dt = rho_a sum_b u_ab . grad_a W_ab V_b + D_a   (Russell 2018 Eq. 3.14)
+ *   Gamma_a   = sum_b W_ab V_b                            (below Russell Eq. 3.17)
+ * Walls enter with their own (prescribed) velocity; the delta-SPH term acts
+ * between fluid particles of the same phase only. closest[a] is the distance
+ * to the nearest other particle, for the guards, and others[a] the number of
+ * other particles within the support, for the density update
+ * (kernels/integrate.cl density_at_step_end); summed_density[a] the gas's
+ * summed density (summed_gas_density), or 0 where the continuity's density
+ * stands. The rates are computed for fluid
+ * particles. Gamma is computed for every fluid particle, and for the others
+ * where a fluid particle lies within the support: only a fluid neighbour's
+ * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
+ * and such a particle loops over no neighbour: the walls, solids and grains
+ * whose box of cells holds no fluid (grid_fluid_in_box: a tank's walls far
+ * from the water, a substrate under a small melt pool, a powder bed beside
+ * a droplet) cost that test only. With the symmetric and
+ * multiphase pressure forms no force reads a non-fluid particle's Gamma,
+ * and it is the sum over its non-wall neighbours only: positive where a
+ * fluid particle is within the support, which is what wall_state asks of it. */
+KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
+                       GLOBAL const real *density, GLOBAL const real *reference_density,
+                       GLOBAL const real *smoothing_length,
+                       GLOBAL const real *mass, GLOBAL const int *kind, GLOBAL const int *material,
+                       GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
+                       GLOBAL const int *fluid_count, GLOBAL const real *materials, fluid_params p,
+                       GLOBAL real *density_rate, GLOBAL real *gamma, GLOBAL real *closest, GLOBAL int *others,
+                       GLOBAL real *summed_density)
 {
     FOR_EACH_ITEM(a, n)
     {
-        if (kind[a] == KIND_FLUID && material_is_gas(materials, material[a]) && gamma[a] >= FREE_SURFACE_SHEPARD) {
-            int cc[3];
-            grid_cell_coords(&g, cell[a], cc);
-            const smoothing_scale scale = smoothing_scale_of(p.h);
-            const real support = SUPPORT_OVER_H * p.h;
-            real x_a[3];
-            grid_point(position, a, x_a);
-            real number = REAL(0.0);
-            FOR_EACH_NEIGHBOUR(b, run, &g, cc, x_a, cell_start, support)
-            {
-                real r_ab[3], r2;
-                if (grid_pair_within(&run, position, b, support * support, r_ab, &r2))
-                    number += smoothing_w_at(&scale, sqrt(r2));
-            }
-            density[a] = mass[a] * number / lattice_shepard;
-        }
+        const int fluid_a = kind[a] == KIND_FLUID;
+        continuity_sums sums = continuity_sums_none();
+        int cc[3];
+        grid_cell_coords(&g, cell[a], cc);
+        if (fluid_a || grid_fluid_in_box(&g, cell_start, fluid_count, cc, GRID_CELLS_PER_SUPPORT))
+            add_continuity_sums(a, GRID_SET_BODIES, fluid_a ? GRID_SET_WALLS : GRID_SET_BODIES, position, velocity,
+                                density, reference_density, smoothing_length, mass, kind, material, cell, &g,
+                                cell_start, materials, &p, &sums);
+        if (!fluid_a && sums.fluid_near && p.pressure_gradient == PRESSURE_RENORMALISED)
+            add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
+                                smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
+        gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
+        density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
+        closest[a] = sums.nearest;
+        others[a] = sums.others;
+        summed_density[a] = summed_gas_density(&sums, a, mass, kind, material, materials, &p);
     }
 }
 
@@ -599,7 +600,7 @@ PAIR_INLINE void fluid_forces_of(int a, GLOBAL const real *position, GLOBAL cons
     const fluid_pair_side s_a = fluid_pair_side_of(a, velocity, mass, density, pressure, gamma, liquid_fraction,
                                                    smoothing_length, material, materials, p);
     const continuity_side c_a =
-        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, p);
+        continuity_side_of(a, velocity, density, reference_density, smoothing_length, kind, material, materials, p);
     if (p->one_pass) {
         const real self[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         add_continuity_pair(&c_a, a, a, self, REAL(0.0), velocity, density, reference_density, smoothing_length,

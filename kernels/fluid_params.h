@@ -29,6 +29,8 @@ typedef struct {
     AMSPH_SHARED_REAL dx;                  /* initial particle spacing, m */
     AMSPH_SHARED_REAL shifting;            /* particle shifting coefficient A; 0: off */
     int gas_density;                       /* GAS_DENSITY_* */
+    AMSPH_SHARED_REAL lattice_shepard;     /* Gamma inside the initial lattice (lattice_shepard_sum), with
+                                              GAS_DENSITY_SUMMATION; else 0 */
     AMSPH_SHARED_REAL transport_pressure;  /* p_tv of the transport velocity (Adami et al. 2013 Eq. 13), Pa; 0: off */
     AMSPH_SHARED_REAL barrier_stiffness;   /* k_b of Fuchs et al. 2022 Eq. 34; 0: off */
     AMSPH_SHARED_REAL barrier_damping;     /* d_b */

@@ -501,7 +501,7 @@ static int summed_density_error(amsph_backend *b, double stretch, double *worst,
     return 0;
 }
 
-/* The summed density of a gas (kernels/fluid.cl summation_density) is
+/* The summed density of a gas (kernels/fluid.cl summed_gas_density) is
  * rho0 inside the initial lattice, to float rounding, and follows the
  * positions: stretched by 2% along x, the block has rho0 / 1.02 within 1e-4
  * (measured 1.4e-5 on both), where the
