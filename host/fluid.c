@@ -155,24 +155,19 @@ int amsph_fluid_reference_density(amsph_sim *s)
                         field(s, AMSPH_FIELD_REFERENCE_DENSITY));
 }
 
-/* Gamma_lattice of kernels/fluid.cl lattice_shepard_sum, into the fluid's
- * parameters, for the gas's summed density (fluid.gas_density: summation). */
+/* Gamma_lattice of kernels/fluid.cl lattice_shepard_sum (into the first
+ * element of s->work), into the fluid's parameters, for the gas's summed
+ * density (fluid.gas_density: summation). */
 int amsph_fluid_start(amsph_sim *s)
 {
     if (s->fluid.gas_density != GAS_DENSITY_SUMMATION)
         return 0;
-    amsph_buffer *out = NULL;
     amsph_real value = 0;
-    int status = amsph_buffer_alloc(s->backend, sizeof value, &out);
-    if (status == 0)
-        status = AMSPH_LAUNCH(s->backend, "lattice_shepard_sum", 1, amsph_arg_int(1),
-                              amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_buffer(out));
-    if (status == 0)
-        status = amsph_download(s->backend, out, 0, sizeof value, &value);
-    if (out)
-        amsph_buffer_free(s->backend, out);
+    AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "lattice_shepard_sum", 1, amsph_arg_int(1),
+                             amsph_arg_bytes(&s->fluid, sizeof s->fluid), amsph_arg_buffer(s->work)));
+    AMSPH_CHECK(amsph_download(s->backend, s->work, 0, sizeof value, &value));
     s->fluid.lattice_shepard = value;
-    return status;
+    return 0;
 }
 
 int amsph_fluid_density(amsph_sim *s, double dt)
@@ -191,10 +186,12 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others), amsph_arg_buffer(s->work)));
-    /* s->work: the summed gas density, from continuity to advance_density */
+    /* s->work: the summed gas density, from continuity to advance_density
+     * (written and read only with fluid.gas_density: summation) */
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->others),
-                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_buffer(s->work), amsph_arg_int(n),
+                             field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_buffer(s->work),
+                             amsph_arg_int(s->fluid.gas_density == GAS_DENSITY_SUMMATION), amsph_arg_int(n),
                              amsph_arg_real(dt), field(s, AMSPH_FIELD_DENSITY)));
     return s->fluid.smoothing_length == SMOOTHING_VOLUME ? update_smoothing_length(s) : 0;
 }

@@ -510,9 +510,9 @@ static inline real summed_gas_density(const continuity_sums *sums, int a, GLOBAL
  * between fluid particles of the same phase only. closest[a] is the distance
  * to the nearest other particle, for the guards, and others[a] the number of
  * other particles within the support, for the density update
- * (kernels/integrate.cl density_at_step_end); summed_density[a] the gas's
- * summed density (summed_gas_density), or 0 where the continuity's density
- * stands. The rates are computed for fluid
+ * (kernels/integrate.cl density_at_step_end); with GAS_DENSITY_SUMMATION
+ * summed_density[a] the gas's summed density (summed_gas_density), or 0
+ * where the continuity's density stands (untouched otherwise). The rates are computed for fluid
  * particles. Gamma is computed for every fluid particle, and for the others
  * where a fluid particle lies within the support: only a fluid neighbour's
  * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
@@ -549,7 +549,8 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
         density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
         closest[a] = sums.nearest;
         others[a] = sums.others;
-        summed_density[a] = summed_gas_density(&sums, a, mass, kind, material, materials, &p);
+        if (p.gas_density == GAS_DENSITY_SUMMATION)
+            summed_density[a] = summed_gas_density(&sums, a, mass, kind, material, materials, &p);
     }
 }
 
