@@ -27,6 +27,7 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
      * host/sim.c); the surface support needs at most this many */
     p->reach = (int)ceil(amsph_support_over_h(s->config.kernel) * h_st / s->support * GRID_CELLS_PER_SUPPORT - 1e-9);
     p->tension = st->tension;
+    p->reaction = st->tension && s->config.grains.enabled;
     p->marangoni = st->marangoni;
     for (int m = 0; m < s->config.n_materials; ++m) {
         const amsph_material *mat = &s->config.materials[m];
@@ -96,8 +97,7 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_SURFACE_SHEPARD),
                              field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
-                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_CURVATURE),
-                             field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
+                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
                              amsph_arg_buffer(s->grid.fluid_count), amsph_arg_buffer(s->materials), away, params,
                              amsph_arg_buffer(s->contact_pull)));
     double sum[4] = {0.0, 0.0, 0.0, 0.0}; /* the net pull (3) and the solids' weight */
@@ -190,11 +190,9 @@ int amsph_surface_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,
                         cell_start, amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_CURVATURE),
-                        field(s, AMSPH_FIELD_SURFACE_TENSION)));
-    /* with a gas the CSF force is on the liquid-gas pairs (Fuchs et al. 2022 Eq. 24) and left as it is */
-    return s->config.grains.enabled && s->surface.tension && !s->surface.gas
-               ? grain_reaction(s, cells, grid, cell_start, away, params)
-               : 0;
+                        field(s, AMSPH_FIELD_SURFACE_TENSION),
+                        amsph_arg_buffer(s->surface.reaction ? s->contact_pull : s->work)));
+    return s->surface.reaction ? grain_reaction(s, cells, grid, cell_start, away, params) : 0;
 }
 
 /* The interface viscosity (Fuchs et al. 2022 Eqs. 31-32) is Monaghan's

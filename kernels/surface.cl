@@ -634,7 +634,9 @@ static inline real interface_viscosity_pair_alpha(GLOBAL const int *kind, GLOBAL
  * A liquid with a contact angle smooths over liquid b only (shapes_curvature);
  * its n_a is the turned normal of surface_normal. With
  * p.interface_viscosity, the interface viscosity (interface_viscosity_factor)
- * joins the acceleration. */
+ * joins the acceleration. With p.reaction, pull[4 a .. 4 a + 2] records the
+ * CSF force f_a V_a of each particle that takes it (the Marangoni force
+ * not), and pull[4 a + 3] 0, for surface_contact_pull. */
 KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *velocity, GLOBAL const real *density,
                           GLOBAL const real *mass, GLOBAL const real *temperature,
                           GLOBAL const int *kind, GLOBAL const int *material,
@@ -643,7 +645,7 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
                           grid_geometry g, GLOBAL const int *cell_start,
                           GLOBAL const real *materials, surface_params p,
                           GLOBAL real *acceleration, GLOBAL real *curvature,
-                          GLOBAL real *tension)
+                          GLOBAL real *tension, GLOBAL real *pull)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -709,6 +711,11 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
             if (p.tension)
                 for (int d = 0; d < 3; ++d)
                     force[d] = p.gas ? sigma * kappa * grad_c[d] : -sigma * kappa * normal[3 * a + d];
+            if (p.reaction) {
+                for (int d = 0; d < 3; ++d)
+                    pull[4 * a + d] = force[d] * mass[a] / density[a];
+                pull[4 * a + 3] = REAL(0.0);
+            }
             if (p.marangoni) {
                 const real norm = normal_size(normal, a);
                 real n_hat[3];
@@ -743,12 +750,12 @@ static inline void stress_normal(GLOBAL const real *normal, GLOBAL const real *u
 }
 
 /* The surface tension's pull between the liquid and the solids it wets
- * (after surface_force, which leaves sigma_a and kappa~_a in tension and
- * curvature): pull[4 i .. 4 i + 2] gets
- *   on a liquid a   its CSF force  F_a = -sigma_a kappa~_a V_a n_a (Russell 2018 Eq. 3.31),
+ * (after surface_force, which leaves sigma_a in tension and, on a liquid a,
+ * its CSF force F_a = f_a V_a in pull: -sigma_a kappa~_a V_a n_a, Russell
+ * 2018 Eq. 3.31, or with a gas Fuchs et al. 2022 Eq. 24): pull[4 i .. 4 i + 2] gets
  *   on a solid r    the contact-line force of the liquid on it
  *                   F_r = -sum_a V_a V_r T_a . grad_a W_ar,  T_a = sigma_a |n_a| (1 - n^_a n^_a),
- * and pull[4 i + 3] its weight |F_r| (0 on a liquid). T is the capillary
+ * and pull[4 i + 3] its weight |F_r| (0 elsewhere). T is the capillary
  * stress of the interface (Lafaurie et al. 1994, J. Comput. Phys. 113,
  * Eq. 6; in SPH Hu & Adams 2006, J. Comput. Phys. 213, Eq. 18), whose
  * divergence is the CSF force: the net CSF force on a body of liquid is the
@@ -770,7 +777,7 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                                  GLOBAL const real *mass, GLOBAL const int *kind,
                                  GLOBAL const int *material, GLOBAL const real *shepard,
                                  GLOBAL const real *normal, GLOBAL const real *unit_normal,
-                                 GLOBAL const real *normal_weight, GLOBAL const real *curvature,
+                                 GLOBAL const real *normal_weight,
                                  GLOBAL const real *tension, GLOBAL const int *cell, int n,
                                  grid_geometry g, GLOBAL const int *cell_start, GLOBAL const int *fluid_count,
                                  GLOBAL const real *materials, GLOBAL const int *blocks_away,
@@ -781,11 +788,8 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
         real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         const real v_i = mass[i] / density[i];
         const int solid = kind[i] != KIND_FLUID && colour_material(materials, material, i);
-        if (takes_surface_force(kind, material, materials, shepard, &p, i)) {
-            for (int d = 0; d < 3; ++d)
-                force[d] = -tension[i] * curvature[i] * v_i * normal[3 * i + d];
-        } else if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2 &&
-                   fluid_within_support(&g, cell_start, fluid_count, &p, cell[i])) {
+        if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2 &&
+            fluid_within_support(&g, cell_start, fluid_count, &p, cell[i])) {
             int cc[3];
             real x_r[3];
             const real support2 = surface_loop_centre(&g, &p, cell, position, i, cc, x_r), support = sqrt(support2);
@@ -804,9 +808,11 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                     force[d] += share * (r_ra[d] - along * n_hat[d]);
             }
         }
-        for (int d = 0; d < 3; ++d)
-            pull[4 * i + d] = force[d];
-        pull[4 * i + 3] = solid ? sqrt(dot3(force, force)) : REAL(0.0);
+        if (!takes_surface_force(kind, material, materials, shepard, &p, i)) {
+            for (int d = 0; d < 3; ++d)
+                pull[4 * i + d] = force[d];
+            pull[4 * i + 3] = solid ? sqrt(dot3(force, force)) : REAL(0.0);
+        }
     }
 }
 

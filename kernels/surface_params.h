@@ -16,6 +16,8 @@ typedef struct {
     AMSPH_SHARED_REAL interface_viscosity; /* alpha0 of Fuchs et al. 2022 Eq. 32; 0: off */
     int reach;                       /* cells the surface support spans from a particle's cell */
     int tension;                     /* 1: the normal (curvature) force */
+    int reaction;                    /* 1: surface_force records the liquid's CSF force for the
+                                        grains' reaction (surface_contact_pull) */
     int marangoni;                   /* 1: the tangential force d sigma/dT grad_s T |n| */
     int temperature;                 /* 1: sigma or the solid colour depends on T (the temperature
                                         buffer is read) */
