@@ -97,7 +97,8 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), field(s, AMSPH_FIELD_SURFACE_SHEPARD),
                              field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
-                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_SURFACE_TENSION), cells, amsph_arg_int(n), grid, cell_start,
+                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_SURFACE_TENSION), cells,
+                             amsph_arg_int(n), grid, cell_start,
                              amsph_arg_buffer(s->grid.fluid_count), amsph_arg_buffer(s->materials), away, params,
                              amsph_arg_buffer(s->contact_pull)));
     double sum[4] = {0.0, 0.0, 0.0, 0.0}; /* the net pull (3) and the solids' weight */

@@ -143,14 +143,14 @@ GAS_RESULTS = {
         "\n# droplet soaks into the bed as without the gas (9 grains wetted against 7,"
         "\n# its lowest particle 3.8 um above the substrate against 9.1). In flight it"
         "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
-    10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 26 min on 2 cores. The"
-         "\n# gas's pressure (1st to 99th percentile) stays between -14 and 27 kPa. The"
-         "\n# droplet soaks into the bed (its lowest particle 11.2 um above the"
-         "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.459 under the"
+    10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores. The"
+         "\n# gas's pressure (1st to 99th percentile) stays between -11 and 29 kPa. The"
+         "\n# droplet soaks into the bed (its lowest particle 5.3 um above the"
+         "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.464 under the"
          "\n# droplet, less than without the gas (0.385; docs/RESULTS.md)."),
-    50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 92459 steps, 23 min on"
+    50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 92133 steps, 21 min on"
          "\n# 2 cores. The sheets reach the side walls at 3.5 us and the lid at 5.5 us,"
-         "\n# and the bed under the droplet loosens from 0.636 to 0.390, as without"
+         "\n# and the bed under the droplet loosens from 0.636 to 0.416, as without"
          "\n# the gas (0.406; docs/RESULTS.md)."),
 }
 
