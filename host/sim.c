@@ -367,6 +367,8 @@ int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_sta
     AMSPH_CHECK(check_saved_fields(s, st));
     AMSPH_CHECK(amsph_particles_upload(b, &st->particles, &s->particles));
     AMSPH_CHECK(allocate_device_state(s));
+    if (c->fluid.enabled)
+        AMSPH_CHECK(amsph_fluid_start(s));
     AMSPH_CHECK(upload_with_capacity(b, &st->last_good, s->particles.capacity, &s->last_good));
     if (c->thermal.enabled)
         AMSPH_CHECK(amsph_thermal_allocate(s));
