@@ -139,10 +139,11 @@ GAS_NOTE = """
 
 # what a gas case's header adds about its own run
 GAS_RESULTS = {
-    1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 61 min on 2 cores. The"
-        "\n# droplet soaks into the bed as without the gas (9 grains wetted against 7,"
-        "\n# its lowest particle 3.8 um above the substrate against 9.1). In flight it"
-        "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
+    1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 61 min on 2 cores (before"
+        "\n# the grains took the capillary reaction in a gas: with it the run stops"
+        "\n# at 58.75 us on the density guard, a gas pocket in a pore set off;"
+        "\n# open, docs/RESULTS.md). The droplet soaks into the bed as without the"
+        "\n# gas. In flight it slows more than the drag case of this gas explains."),
     10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores. The"
          "\n# gas's pressure (1st to 99th percentile) stays between -11 and 29 kPa. The"
          "\n# droplet soaks into the bed (its lowest particle 5.3 um above the"
