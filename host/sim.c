@@ -233,7 +233,10 @@ static int prepare(const amsph_case *c, amsph_backend *b, amsph_sim *s)
     return amsph_build(b, &build);
 }
 
-/* The grid and work buffers, once the particles are on the device. */
+/* The grid and work buffers, once the particles are on the device, and
+ * the fluid's constants worked out on the device with them (the lattice's
+ * kernel sum of a summed gas density: amsph_fluid_start), for a new run and
+ * a restart alike. */
 static int allocate_device_state(amsph_sim *s)
 {
     const amsph_case *c = &s->config;
@@ -253,7 +256,8 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_grains_allocate(s));
     if (c->grains.enabled && c->surface.enabled)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->contact_pull));
-    return upload_materials(s);
+    AMSPH_CHECK(upload_materials(s));
+    return c->fluid.enabled ? amsph_fluid_start(s) : 0;
 }
 
 int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
@@ -261,8 +265,6 @@ int amsph_sim_create(const amsph_case *c, amsph_backend *b, amsph_sim *s)
     AMSPH_CHECK(prepare(c, b, s));
     AMSPH_CHECK(build_particles(s));
     AMSPH_CHECK(allocate_device_state(s));
-    if (c->fluid.enabled)
-        AMSPH_CHECK(amsph_fluid_start(s));
     AMSPH_CHECK(amsph_grid_sort(&s->grid, &s->particles));
     if (c->thermal.enabled)
         AMSPH_CHECK(amsph_thermal_start(s));
@@ -367,8 +369,6 @@ int amsph_sim_restore(const amsph_case *c, amsph_backend *b, const amsph_sim_sta
     AMSPH_CHECK(check_saved_fields(s, st));
     AMSPH_CHECK(amsph_particles_upload(b, &st->particles, &s->particles));
     AMSPH_CHECK(allocate_device_state(s));
-    if (c->fluid.enabled)
-        AMSPH_CHECK(amsph_fluid_start(s));
     AMSPH_CHECK(upload_with_capacity(b, &st->last_good, s->particles.capacity, &s->last_good));
     if (c->thermal.enabled)
         AMSPH_CHECK(amsph_thermal_allocate(s));
