@@ -351,14 +351,15 @@ static const key_spec specs[] = {
      .def = GAS_DENSITY_CONTINUITY, .offset = FLUID(gas_density),
      .doc = "Density of a gas material: from the continuity equation (as a liquid's), or summed over the "
             "neighbours, rho_a = m_a sum_b W_ab over that sum on the initial lattice (Adami et al. 2013), "
-            "which follows the positions, the transport velocity's displacement included; a particle whose "
-            "support is cut (Shepard sum below 0.95) keeps the continuity's"},
+            "which follows the positions, the transport velocity's displacement included; where a void cuts "
+            "the support (Shepard sum below 0.98 of the lattice's) blended with the continuity's, which alone "
+            "stands below 0.93"},
     {.section = SEC_FLUID, .key = "transport_pressure", .type = VT_NUMBER, .unit = "Pa", .flags = F_FROM_LO,
      .lo = 0, .def = 0, .offset = FLUID(transport_pressure),
      .doc = "Background pressure of the transport velocity (Adami et al. 2013 Eq. 13): fluid particles move "
             "by dt^2 / 2 times -(p_tv / m_a) sum_b (V_a^2 + V_b^2) grad_a W_ab after each step, which keeps "
             "them evenly spaced without the force `background_pressure` exerts on a body moving through "
-            "them; 0: off"},
+            "them, less where a void cuts the support and none at its edge; 0: off"},
     {.section = SEC_FLUID, .key = "smoothing_length", .type = VT_CHOICE, .choices = smoothing_choices,
      .def = SMOOTHING_FIXED, .offset = FLUID(smoothing_length),
      .doc = "Smoothing length of the fluid's pair terms: fixed h0 = `h_over_dx` dx, or following each fluid "

@@ -186,8 +186,8 @@ int amsph_fluid_density(amsph_sim *s, double dt)
                              amsph_arg_buffer(s->materials), amsph_arg_bytes(&s->fluid, sizeof s->fluid),
                              field(s, AMSPH_FIELD_DENSITY_RATE), field(s, AMSPH_FIELD_SHEPARD),
                              amsph_arg_buffer(s->closest), amsph_arg_buffer(s->others), amsph_arg_buffer(s->work)));
-    /* s->work: the summed gas density, from continuity to advance_density
-     * (written and read only with fluid.gas_density: summation) */
+    /* s->work: the summed gas density's pull, from continuity to
+     * advance_density (written and read only with fluid.gas_density: summation) */
     AMSPH_CHECK(AMSPH_LAUNCH(b, "advance_density", n, field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_DENSITY_RATE), amsph_arg_buffer(s->others),
                              field(s, AMSPH_FIELD_REFERENCE_DENSITY), amsph_arg_buffer(s->work),

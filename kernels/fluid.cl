@@ -262,7 +262,7 @@ static inline int diffuses_departure(const fluid_params *p)
 /* The sums of continuity over the neighbours of a particle. */
 typedef struct {
     real shepard, drho, diffusion, nearest;
-    real kernel_sum; /* sum_b W(r_ab, h0), a gas particle with GAS_DENSITY_SUMMATION (summed_gas_density) */
+    real kernel_sum; /* sum_b W(r_ab, h0), a gas particle with GAS_DENSITY_SUMMATION (summed_density_pull) */
     int fluid_near; /* a fluid particle other than a lies within the support */
     int others;     /* fluid a: the particles other than a within its support */
     /* CONTINUITY_CORRECTED: moment[3 i + j] = B_ij and rate[3 i + j] = D_ij
@@ -453,7 +453,7 @@ static inline real continuity_rate(const continuity_sums *sums, int a, GLOBAL co
 }
 
 /* Shepard sum Gamma below which a fluid particle counts as lying on a free
- * surface (particle shifting, the summed gas density): on a lattice with
+ * surface (particle shifting): on a lattice with
  * Wendland C2 at h = 1.2 dx, 0.823 on a flat face, 1.017 one layer below it
  * and 1.018 in the interior (wider kernels reach further in: shifting
  * spreads the flag to every fluid neighbour within the support). */
@@ -482,23 +482,41 @@ KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
 
 /* The density of a gas particle summed over its neighbours (fluid.gas_density:
  * summation; Adami, Hu & Adams 2013), in place of the continuity's:
- *   rho_a = m_a sum_b W_ab / Gamma_lattice
+ *   rho_sum,a = m_a sum_b W_ab / Gamma_lattice
  * every particle within the support at h0 counted (a itself, fluid of every
  * phase, walls, solids and grains; continuity_sums.kernel_sum), Gamma_lattice
  * = lattice_shepard_sum, so that a particle of mass rho0 dx^d inside the
  * initial lattice has rho0. It follows the positions, whatever moved them:
  * on an evenly spaced gas it is rho0, whatever the flow did before. Where
- * the support is cut (Gamma_a below FREE_SURFACE_SHEPARD: a void beside the
- * particle, such as a gap a moving grain opens) the sum would fall with the
- * missing neighbours, by a third at a corner; there, and for every other
- * particle, 0: the continuity's density stands (advance_density). */
-static inline real summed_gas_density(const continuity_sums *sums, int a, GLOBAL const real *mass,
-                                      GLOBAL const int *kind, GLOBAL const int *material,
-                                      GLOBAL const real *materials, const fluid_params *p)
+ * the support is cut (a void beside the particle, such as a gap a moving
+ * grain opens) the sum falls with the missing neighbours, by a third at a
+ * corner and by 7% where Gamma_a is 0.95; there the continuity's density
+ * stands. Between the two the density is blended,
+ *   rho_a^(n+1) = s rho_sum,a + (1 - s) (rho_a^n + dt drho_a/dt),
+ *   s = clamp((Gamma_a / Gamma_lattice - SUMMED_FROM) / (SUMMED_FULL - SUMMED_FROM), 0, 1),
+ * so that the density of a particle whose support fills up moves to the
+ * summed one smoothly: switched at one Gamma, it jumped by the 7%, a
+ * pressure step of 0.07 rho0 c0^2 (4.8e5 Pa in the 1 m/s binder scene with
+ * gas, which set a pocket of gas beside the particle oscillating at up to
+ * 400 m/s; RESULTS.md). Returned as the step's two parts: *continuity_share
+ * = 1 - s, the factor of the continuity's rate, and the summed density's
+ * pull s (rho_sum,a - rho_a^n); 0 and 1 for every particle that is not a
+ * summed gas. */
+#define SUMMED_FROM REAL(0.93) /* Gamma / Gamma_lattice: 0.81 on a flat face, 1 inside */
+#define SUMMED_FULL REAL(0.98) /* the row under a flat face: 0.998 (Wendland C2), 0.973 (quintic), at h = 1.2 dx */
+
+static inline real summed_density_pull(const continuity_sums *sums, int a, GLOBAL const real *mass,
+                                       GLOBAL const real *density, GLOBAL const int *kind,
+                                       GLOBAL const int *material, GLOBAL const real *materials,
+                                       const fluid_params *p, real *continuity_share)
 {
-    return gas_density_summed(a, kind, material, materials, p) && sums->shepard >= FREE_SURFACE_SHEPARD
-               ? mass[a] * sums->kernel_sum / p->lattice_shepard
-               : REAL(0.0);
+    *continuity_share = REAL(1.0);
+    if (!gas_density_summed(a, kind, material, materials, p))
+        return REAL(0.0);
+    const real fill = sums->shepard / p->lattice_shepard;
+    const real s = fmin(REAL(1.0), fmax(REAL(0.0), (fill - SUMMED_FROM) / (SUMMED_FULL - SUMMED_FROM)));
+    *continuity_share = REAL(1.0) - s;
+    return s * (mass[a] * sums->kernel_sum / p->lattice_shepard - density[a]);
 }
 
 /* Continuity and Shepard sums, evaluated after the drift with the half-step
@@ -511,8 +529,9 @@ static inline real summed_gas_density(const continuity_sums *sums, int a, GLOBAL
  * to the nearest other particle, for the guards, and others[a] the number of
  * other particles within the support, for the density update
  * (kernels/integrate.cl density_at_step_end); with GAS_DENSITY_SUMMATION
- * summed_density[a] the gas's summed density (summed_gas_density), or 0
- * where the continuity's density stands (untouched otherwise). The rates are computed for fluid
+ * summed_pull[a] the summed density's pull (summed_density_pull), and the
+ * rate of a summed gas particle is the continuity's share of it (untouched
+ * otherwise). The rates are computed for fluid
  * particles. Gamma is computed for every fluid particle, and for the others
  * where a fluid particle lies within the support: only a fluid neighbour's
  * renormalised pressure force reads it (fluid_pair.h). Elsewhere it is 0,
@@ -530,7 +549,7 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
                        GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
                        GLOBAL const int *fluid_count, GLOBAL const real *materials, fluid_params p,
                        GLOBAL real *density_rate, GLOBAL real *gamma, GLOBAL real *closest, GLOBAL int *others,
-                       GLOBAL real *summed_density)
+                       GLOBAL real *summed_pull)
 {
     FOR_EACH_ITEM(a, n)
     {
@@ -546,11 +565,15 @@ KERNEL void continuity(GLOBAL const real *position, GLOBAL const real *velocity,
             add_continuity_sums(a, GRID_SET_WALLS, GRID_SET_WALLS, position, velocity, density, reference_density,
                                 smoothing_length, mass, kind, material, cell, &g, cell_start, materials, &p, &sums);
         gamma[a] = fluid_a || sums.fluid_near ? sums.shepard : REAL(0.0);
-        density_rate[a] = fluid_a ? continuity_rate(&sums, a, density, smoothing_length, material, materials, &p) : REAL(0.0);
+        real continuity_share = REAL(1.0);
+        if (p.gas_density == GAS_DENSITY_SUMMATION)
+            summed_pull[a] =
+                summed_density_pull(&sums, a, mass, density, kind, material, materials, &p, &continuity_share);
+        density_rate[a] = fluid_a ? continuity_share * continuity_rate(&sums, a, density, smoothing_length, material,
+                                                                       materials, &p)
+                                  : REAL(0.0);
         closest[a] = sums.nearest;
         others[a] = sums.others;
-        if (p.gas_density == GAS_DENSITY_SUMMATION)
-            summed_density[a] = summed_gas_density(&sums, a, mass, kind, material, materials, &p);
     }
 }
 
@@ -665,6 +688,29 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
     }
 }
 
+/* The share of the transport velocity's displacement that particle a takes,
+ * from its colour gradient |sum_b V_b grad_a W_ab| h_a (`cut`): 1 up to
+ * TRANSPORT_FULL_CUT, falling linearly to 0 at TRANSPORT_NO_CUT. With
+ * Wendland C2 at h = 1.2 dx, `cut` is 0 inside the lattice, 0.19 for a
+ * particle moved 0.2 dx off its site, up to 0.06 in the gas of the binder
+ * scenes, 0.56 on a flat face and 0.7 to 0.9 on the edge of a pocket of gas
+ * squeezed to 0.6 dx beside a void between grains. There the displacement,
+ * a push into the void as strong as the gas's own pressure (p_tv =
+ * rho0 c0^2), is a step in the positions with no momentum behind it, while
+ * the summed density's tension pulls the particles back by their velocity:
+ * with the whole push, that pocket went from rest to 400 m/s in 40 steps
+ * (RESULTS.md). The free-surface projection of shifting_displacement
+ * removes the push only where a Gamma flags the surface, and Gamma is the
+ * lattice's in a squeezed pocket; the share fades the push out with the
+ * cut itself, continuously (test_fluid). */
+#define TRANSPORT_FULL_CUT REAL(0.25)
+#define TRANSPORT_NO_CUT REAL(0.5)
+
+static inline real transport_share(real cut)
+{
+    return fmin(REAL(1.0), fmax(REAL(0.0), (TRANSPORT_NO_CUT - cut) / (TRANSPORT_NO_CUT - TRANSPORT_FULL_CUT)));
+}
+
 /* Particle shifting (Lind et al. 2012; Skillen et al. 2013): after a step,
  * each fluid particle moves down the gradient of the particle concentration,
  *   delta r_a = -D grad C_a,   D = A h_a |u_a| dt              (Skillen et al.)
@@ -684,7 +730,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * With a transport pressure p_tv, the displacement adds that of Adami, Hu &
  * Adams's (2013) transport velocity u~ = u + (dt / 2) a~ over the step,
  *   a~_a = -(p_tv / m_a) sum_b (V_a^2 + V_b^2) grad_a W_ab   (their Eq. 13),
- *   delta r_a += (dt^2 / 2) a~_a,
+ *   delta r_a += (dt^2 / 2) a~_a  times transport_share (above),
  * the pair pressure term of the multiphase form (Fuchs et al. 2022 Eq. 23)
  * at a uniform p_tv: what `background_pressure` adds to the force, moved
  * from the momentum to the positions. It too pushes particles from crowded
@@ -742,10 +788,11 @@ KERNEL void shifting_displacement(GLOBAL const real *position, GLOBAL const real
                 u_a[d] = velocity[3 * a + d];
             const real speed = sqrt(dot3(u_a, u_a));
             const real diffusivity = p.shifting * h_a * speed * dt;
-            const real transport_step = REAL(0.5) * dt * dt * p.transport_pressure / mass[a];
+            const real colour_norm = sqrt(dot3(colour, colour));
+            const real transport_step =
+                REAL(0.5) * dt * dt * p.transport_pressure / mass[a] * transport_share(colour_norm * h_a);
             for (int d = 0; d < 3; ++d)
                 delta_r[d] = -diffusivity * grad_c[d] - transport_step * transport[d];
-            const real colour_norm = sqrt(dot3(colour, colour));
             if (near_surface && colour_norm > REAL(0.0)) {
                 const real normal_part = dot3(delta_r, colour) / (colour_norm * colour_norm);
                 for (int d = 0; d < 3; ++d)

@@ -81,18 +81,19 @@ static inline real density_at_step_end(int others, real reference_density, real 
 }
 
 /* rho += dt drho/dt for fluid particles (continuity, kernels/fluid.cl),
- * density_at_step_end; or, with gas_summed (fluid.gas_density: summation),
- * the summed density where continuity gave one (summed_density > 0). */
+ * density_at_step_end; with gas_summed (fluid.gas_density: summation) plus
+ * the summed density's pull summed_pull (kernels/fluid.cl
+ * summed_density_pull; there drho/dt is the continuity's share of it). */
 KERNEL void advance_density(GLOBAL const int *kind, GLOBAL const real *density_rate, GLOBAL const int *others,
-                            GLOBAL const real *reference_density, GLOBAL const real *summed_density, int gas_summed,
+                            GLOBAL const real *reference_density, GLOBAL const real *summed_pull, int gas_summed,
                             int n, real dt, GLOBAL real *density)
 {
     FOR_EACH_ITEM(i, n)
     {
-        if (kind[i] == KIND_FLUID)
-            density[i] = gas_summed && summed_density[i] > REAL(0.0)
-                             ? summed_density[i]
-                             : density_at_step_end(others[i], reference_density[i], density[i] + dt * density_rate[i]);
+        if (kind[i] == KIND_FLUID) {
+            const real pull = gas_summed ? summed_pull[i] : REAL(0.0);
+            density[i] = density_at_step_end(others[i], reference_density[i], density[i] + dt * density_rate[i] + pull);
+        }
     }
 }
 

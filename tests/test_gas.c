@@ -13,7 +13,8 @@
  *   - a liquid's continuity follows its own velocity field, whatever the gas
  *     beside it does;
  *   - a gas's summed density (fluid.gas_density: summation) is rho0 on the
- *     lattice and follows a stretch of the positions;
+ *     lattice and follows a stretch of the positions, and gives way to the
+ *     continuity's without a jump as a void opens beside the particle;
  *   - heat flows from a liquid into a gas as between two semi-infinite media
  *     of their own k, rho and c_p;
  *   - a laser passes through a gas: the liquid under it absorbs what it
@@ -481,22 +482,42 @@ static const char *summation_case = "dimension: 2\n"
                                     "geometry:\n"
                                     "  - {shape: box, kind: fluid, material: gas, min: [0, 0], max: [1, 1]}\n";
 
-/* The largest |rho / expected - 1| over the particles at least a support
- * inside the block (x and y in [0.15, 0.85] before any stretch), after the
- * positions x were stretched to (1 + stretch) x, and *corner = rho / rho0 - 1
- * at the block's corner particle (0.025, 0.025). */
-static int summed_density_error(amsph_backend *b, double stretch, double *worst, double *corner)
+/* One density pass (dt = 0) over the summation_case block after
+ * move(x, arg) moved each particle and every density was set to rho0 (so
+ * that the continuity's density is rho0), into h (the caller frees it). */
+typedef void (*block_move)(amsph_real x[3], double arg);
+
+static int summation_block_pass(amsph_backend *b, block_move move, double arg, amsph_host_particles *h)
 {
     amsph_case c;
     if (parse(summation_case, &c))
         return -1;
     amsph_sim s;
     AMSPH_CHECK(amsph_sim_create(&c, b, &s));
+    AMSPH_CHECK(amsph_particles_download(&s.particles, h));
+    for (int i = 0; i < h->n; ++i) {
+        move(amsph_host_real(h, AMSPH_FIELD_POSITION) + 3 * i, arg);
+        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)amsph_material_density(&c.materials[0], 0.0);
+    }
+    AMSPH_CHECK(density_pass_at(b, &s, h));
+    amsph_sim_free(&s);
+    return 0;
+}
+
+/* x stretched to (1 + stretch) x. */
+static void stretch_x(amsph_real x[3], double stretch)
+{
+    x[0] *= (amsph_real)(1.0 + stretch);
+}
+
+/* The largest |rho / expected - 1| over the particles at least a support
+ * inside the block (x and y in [0.15, 0.85] before any stretch), after the
+ * positions x were stretched to (1 + stretch) x, and *corner = rho / rho0 - 1
+ * at the block's corner particle (0.025, 0.025). */
+static int summed_density_error(amsph_backend *b, double stretch, double *worst, double *corner)
+{
     amsph_host_particles h;
-    AMSPH_CHECK(amsph_particles_download(&s.particles, &h));
-    for (int i = 0; i < h.n; ++i)
-        amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i] *= (amsph_real)(1.0 + stretch);
-    AMSPH_CHECK(density_pass_at(b, &s, &h));
+    AMSPH_CHECK(summation_block_pass(b, stretch_x, stretch, &h));
     *worst = 0.0;
     for (int i = 0; i < h.n; ++i) {
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
@@ -508,11 +529,10 @@ static int summed_density_error(amsph_backend *b, double stretch, double *worst,
             *corner = rho / 10.0 - 1.0;
     }
     amsph_host_free(&h);
-    amsph_sim_free(&s);
     return 0;
 }
 
-/* The summed density of a gas (kernels/fluid.cl summed_gas_density) is
+/* The summed density of a gas (kernels/fluid.cl summed_density_pull) is
  * rho0 inside the initial lattice, to float rounding, and follows the
  * positions: stretched by 2% along x, the block has rho0 / 1.02 within 1e-4
  * (measured 1.4e-5 on both), where the
@@ -534,6 +554,78 @@ static void test_summation_density(void)
         CHECK(lattice < 1e-5, "backend %d: the summed density is %g off rho0 on the lattice", k, lattice);
         CHECK(stretched < 1e-4, "backend %d: stretched by 2%%, the summed density is %g off rho0 / 1.02", k,
               stretched);
+        amsph_backend_destroy(b);
+    }
+}
+
+/* The face column of the block (x = 0.975) moved right by gap. */
+static void open_face_gap(amsph_real x[3], double gap)
+{
+    if (x[0] > 0.95)
+        x[0] += (amsph_real)gap;
+}
+
+/* The density and the Shepard sum Gamma of the particle at (0.925, 0.525),
+ * in the column next to the right face of the summation_case block, with
+ * the face column moved right by `gap` (open_face_gap): its support is cut
+ * as the column leaves it. */
+static int face_neighbour_density(amsph_backend *b, double gap, double *rho, double *gamma)
+{
+    amsph_host_particles h;
+    AMSPH_CHECK(summation_block_pass(b, open_face_gap, gap, &h));
+    for (int i = 0; i < h.n; ++i) {
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
+        if (fabs(x[0] - 0.925) < 1e-3 && fabs(x[1] - 0.525) < 1e-3) {
+            *rho = amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i];
+            *gamma = amsph_host_real(&h, AMSPH_FIELD_SHEPARD)[i];
+        }
+    }
+    amsph_host_free(&h);
+    return 0;
+}
+
+/* As a void opens beside a gas particle, its density goes from the summed
+ * one to the continuity's without a jump (kernels/fluid.cl
+ * summed_density_pull): the face column of the block moves away from the
+ * column next to it in steps of 0.005 dx up to 0.5 dx, which takes that
+ * column's Gamma from 0.97 down past the 0.95 where the summed density
+ * (0.95 rho0 there) was once switched on, to 0.83, near a free face's. At
+ * dt = 0 (every density set to rho0 first) the continuity's density is
+ * rho0; the summed one is rho0 Gamma / Gamma_lattice. No step may change
+ * the density by more than 0.3% of rho0: the blend changes it by 0.17% a
+ * step at most (the whole blend takes 0.12 dx of gap), where a switch at
+ * one Gamma jumps by 7% in one step however fine the steps. With the face
+ * column in place the density is the summed one (2.7% below rho0) blended
+ * with 0.14 of rho0, 2.3% below it, and rho0 once the column is 0.5 dx
+ * off. */
+static void test_summation_fills_smoothly(void)
+{
+    for (int k = 0; k < TESTING_BACKENDS; ++k) {
+        amsph_backend *b = testing_backend(k);
+        if (!b)
+            continue;
+        const double dx = 0.05, rho0 = 10.0;
+        double first = NAN, last = NAN, previous = NAN, largest_step = 0.0, gamma_first = NAN, gamma_last = NAN;
+        for (int step = 0; step <= 100; ++step) {
+            double rho = NAN, gamma = NAN;
+            CHECK_OK(face_neighbour_density(b, 0.005 * dx * step, &rho, &gamma));
+            if (step == 0) {
+                first = rho;
+                gamma_first = gamma;
+            } else {
+                largest_step = fmax(largest_step, fabs(rho - previous));
+            }
+            previous = last = rho;
+            gamma_last = gamma;
+        }
+        CHECK(gamma_first > 0.95 && gamma_last < 0.9, "backend %d: Gamma goes from %g to %g, not past 0.95", k,
+              gamma_first, gamma_last);
+        CHECK(largest_step < 0.003 * rho0, "backend %d: the density jumps by %g kg/m^3 in one step of 0.005 dx", k,
+              largest_step);
+        CHECK(first < 0.98 * rho0 && fabs(last - rho0) < 1e-6 * rho0,
+              "backend %d: the density is %g with the face column in place (summed: below %g) and %g without it "
+              "(the continuity's: %g)",
+              k, first, 0.98 * rho0, last, rho0);
         amsph_backend_destroy(b);
     }
 }
@@ -575,6 +667,7 @@ int main(int argc, char **argv)
         test_backends_agree();
         test_continuity_interface();
         test_summation_density();
+        test_summation_fills_smoothly();
         test_conduction();
         test_laser_through_gas();
     } else if (strcmp(part, "droplet") == 0) {
