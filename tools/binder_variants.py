@@ -139,19 +139,18 @@ GAS_NOTE = """
 
 # what a gas case's header adds about its own run
 GAS_RESULTS = {
-    1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 61 min on 2 cores (before"
-        "\n# the grains took the capillary reaction in a gas: with it the run stops"
-        "\n# at 58.75 us on the density guard, a gas pocket in a pore set off;"
-        "\n# open, docs/RESULTS.md). The droplet soaks into the bed as without the"
-        "\n# gas. In flight it slows more than the drag case of this gas explains."),
+    1: ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 69 min on 2 cores. The"
+        "\n# droplet soaks into the bed as without the gas, to 2.4 um above the"
+        "\n# substrate, and loosens it under itself from 0.636 to 0.360. In flight it"
+        "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
     10: ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores. The"
-         "\n# gas's pressure (1st to 99th percentile) stays between -11 and 29 kPa. The"
-         "\n# droplet soaks into the bed (its lowest particle 5.3 um above the"
-         "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.464 under the"
+         "\n# gas's pressure (1st to 99th percentile) stays between -13 and 27 kPa. The"
+         "\n# droplet soaks into the bed (its lowest particle 4.9 um above the"
+         "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.434 under the"
          "\n# droplet, less than without the gas (0.385; docs/RESULTS.md)."),
-    50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 92133 steps, 21 min on"
-         "\n# 2 cores. The sheets reach the side walls at 3.5 us and the lid at 5.5 us,"
-         "\n# and the bed under the droplet loosens from 0.636 to 0.416, as without"
+    50: ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 91057 steps, 20 min on"
+         "\n# 2 cores. The sheets reach the side walls at 3.5 us and the lid at 6 us,"
+         "\n# and the bed under the droplet loosens from 0.636 to 0.434, as without"
          "\n# the gas (0.406; docs/RESULTS.md)."),
 }
 
