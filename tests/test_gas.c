@@ -484,10 +484,12 @@ static const char *summation_case = "dimension: 2\n"
 
 /* One density pass (dt = 0) over the summation_case block after
  * move(x, arg) moved each particle and every density was set to rho0 (so
- * that the continuity's density is rho0), into h (the caller frees it). */
+ * that the continuity's density is rho0), into h (the caller frees it);
+ * with `lattice`, the lattice's Shepard sum the summation divides by. */
 typedef void (*block_move)(amsph_real x[3], double arg);
 
-static int summation_block_pass(amsph_backend *b, block_move move, double arg, amsph_host_particles *h)
+static int summation_block_pass(amsph_backend *b, block_move move, double arg, amsph_host_particles *h,
+                                double *lattice)
 {
     amsph_case c;
     if (parse(summation_case, &c))
@@ -500,6 +502,8 @@ static int summation_block_pass(amsph_backend *b, block_move move, double arg, a
         amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)amsph_material_density(&c.materials[0], 0.0);
     }
     AMSPH_CHECK(density_pass_at(b, &s, h));
+    if (lattice)
+        *lattice = s.fluid.lattice_shepard;
     amsph_sim_free(&s);
     return 0;
 }
@@ -517,7 +521,7 @@ static void stretch_x(amsph_real x[3], double stretch)
 static int summed_density_error(amsph_backend *b, double stretch, double *worst, double *corner)
 {
     amsph_host_particles h;
-    AMSPH_CHECK(summation_block_pass(b, stretch_x, stretch, &h));
+    AMSPH_CHECK(summation_block_pass(b, stretch_x, stretch, &h, NULL));
     *worst = 0.0;
     for (int i = 0; i < h.n; ++i) {
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
@@ -568,11 +572,11 @@ static void open_face_gap(amsph_real x[3], double gap)
 /* The density and the Shepard sum Gamma of the particle at (0.925, 0.525),
  * in the column next to the right face of the summation_case block, with
  * the face column moved right by `gap` (open_face_gap): its support is cut
- * as the column leaves it. */
-static int face_neighbour_density(amsph_backend *b, double gap, double *rho, double *gamma)
+ * as the column leaves it; and the lattice's Shepard sum. */
+static int face_neighbour_density(amsph_backend *b, double gap, double *rho, double *gamma, double *lattice)
 {
     amsph_host_particles h;
-    AMSPH_CHECK(summation_block_pass(b, open_face_gap, gap, &h));
+    AMSPH_CHECK(summation_block_pass(b, open_face_gap, gap, &h, lattice));
     for (int i = 0; i < h.n; ++i) {
         const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION) + 3 * i;
         if (fabs(x[0] - 0.925) < 1e-3 && fabs(x[1] - 0.525) < 1e-3) {
@@ -594,10 +598,12 @@ static int face_neighbour_density(amsph_backend *b, double gap, double *rho, dou
  * rho0; the summed one is rho0 Gamma / Gamma_lattice. No step may change
  * the density by more than 0.3% of rho0: the blend changes it by 0.17% a
  * step at most (the whole blend takes 0.12 dx of gap), where a switch at
- * one Gamma jumps by 7% in one step however fine the steps. With the face
- * column in place the density is the summed one (2.7% below rho0) blended
- * with 0.14 of rho0, 2.3% below it, and rho0 once the column is 0.5 dx
- * off. */
+ * one Gamma jumps by 7% in one step however fine the steps. At every gap
+ * the density is the blend's, rho0 (s Gamma / Gamma_lattice + 1 - s) with
+ * s = clamp((Gamma / Gamma_lattice - 0.93) / 0.05, 0, 1), to 1e-5 (float
+ * sums): with the face column in place the summed one (2.7% below rho0)
+ * blended with 0.14 of rho0, 2.3% below it, and rho0 once the column is
+ * 0.5 dx off. */
 static void test_summation_fills_smoothly(void)
 {
     for (int k = 0; k < TESTING_BACKENDS; ++k) {
@@ -606,9 +612,12 @@ static void test_summation_fills_smoothly(void)
             continue;
         const double dx = 0.05, rho0 = 10.0;
         double first = NAN, last = NAN, previous = NAN, largest_step = 0.0, gamma_first = NAN, gamma_last = NAN;
+        double off_blend = 0.0;
         for (int step = 0; step <= 100; ++step) {
-            double rho = NAN, gamma = NAN;
-            CHECK_OK(face_neighbour_density(b, 0.005 * dx * step, &rho, &gamma));
+            double rho = NAN, gamma = NAN, lattice = NAN;
+            CHECK_OK(face_neighbour_density(b, 0.005 * dx * step, &rho, &gamma, &lattice));
+            const double fill = gamma / lattice, s = fmin(1.0, fmax(0.0, (fill - 0.93) / 0.05));
+            off_blend = fmax(off_blend, fabs(rho / (rho0 * (s * fill + 1.0 - s)) - 1.0));
             if (step == 0) {
                 first = rho;
                 gamma_first = gamma;
@@ -622,6 +631,8 @@ static void test_summation_fills_smoothly(void)
               gamma_first, gamma_last);
         CHECK(largest_step < 0.003 * rho0, "backend %d: the density jumps by %g kg/m^3 in one step of 0.005 dx", k,
               largest_step);
+        CHECK(off_blend < 1e-5, "backend %d: the density is %g off the blend of the summed and the continuity's", k,
+              off_blend);
         CHECK(first < 0.98 * rho0 && fabs(last - rho0) < 1e-6 * rho0,
               "backend %d: the density is %g with the face column in place (summed: below %g) and %g without it "
               "(the continuity's: %g)",
