@@ -502,8 +502,8 @@ KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
  * = 1 - s, the factor of the continuity's rate, and the summed density's
  * pull s (rho_sum,a - rho_a^n); 0 and 1 for every particle that is not a
  * summed gas. */
-#define SUMMED_FROM REAL(0.93) /* Gamma / Gamma_lattice: 0.81 on a flat face, 1 inside */
-#define SUMMED_FULL REAL(0.98) /* the row under a flat face: 0.998 (Wendland C2), 0.973 (quintic), at h = 1.2 dx */
+#define SUMMED_FROM REAL(0.93) /* Gamma / Gamma_lattice: 0.81 on a flat face (2D and 3D), 1 inside */
+#define SUMMED_FULL REAL(0.98) /* the row under a flat face: 0.999 (Wendland C2, 2D and 3D), 0.973 / 0.976 (quintic, 2D / 3D), at h = 1.2 dx */
 
 static inline real summed_density_pull(const continuity_sums *sums, int a, GLOBAL const real *mass,
                                        GLOBAL const real *density, GLOBAL const int *kind,
@@ -692,8 +692,11 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
  * from its colour gradient |sum_b V_b grad_a W_ab| h_a (`cut`): 1 up to
  * TRANSPORT_FULL_CUT, falling linearly to 0 at TRANSPORT_NO_CUT. With
  * Wendland C2 at h = 1.2 dx, `cut` is 0 inside the lattice, 0.19 for a
- * particle moved 0.2 dx off its site, up to 0.06 in the gas of the binder
- * scenes, 0.56 on a flat face and 0.7 to 0.9 on the edge of a pocket of gas
+ * particle moved 0.2 dx off its site (0.10 in 3D), up to 0.06 in the gas of
+ * the binder scenes, 0.56 on a flat face (0.58 in 3D, on the cubic lattice,
+ * whose Gamma there is 0.81 of the lattice's too, as in 2D: the bounds of
+ * the share and of the summed density carry over to 3D) and 0.7 to 0.9 on
+ * the edge of a pocket of gas
  * squeezed to 0.6 dx beside a void between grains. There the displacement,
  * a push into the void as strong as the gas's own pressure (p_tv =
  * rho0 c0^2), is a step in the positions with no momentum behind it, while
