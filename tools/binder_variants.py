@@ -157,8 +157,8 @@ GAS_RESULTS = {
          "\n# and the bed under the droplet loosens from 0.636 to 0.434, as without"
          "\n# the gas (0.406; docs/RESULTS.md)."),
     (3, 10): ("\n# In 3D at 10 m/s: 9.8e-10 s, 0.05 ms in about 51000 steps of 414176"
-              "\n# particles, a GPU's run. Its first 4 us took 4072 steps and 77 min on 2"
-              "\n# cores: the droplet slows and spreads as without the gas (at 4 us its"
+              "\n# particles, a GPU's run (1.7 steps/s on 2 cores, 8 h). Its first 4 us"
+              "\n# (4072 steps): the droplet slows and spreads as without the gas (at 4 us its"
               "\n# kinetic energy within 0.2%, its lowest point 2 um higher, its wetted"
               "\n# width 3.5 um narrower; docs/RESULTS.md)."),
 }
