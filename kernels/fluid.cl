@@ -12,6 +12,7 @@
 #include "materials.h"
 #include "neighbours.h"
 #include "smoothing.h"
+#include "transition.h"
 #include "vec3.h"
 
 /* Reference density of every particle at its temperature, rho0(T)
@@ -493,7 +494,7 @@ KERNEL void lattice_shepard_sum(int n, fluid_params p, GLOBAL real *shepard)
  * corner and by 7% where Gamma_a is 0.95; there the continuity's density
  * stands. Between the two the density is blended,
  *   rho_a^(n+1) = s rho_sum,a + (1 - s) (rho_a^n + dt drho_a/dt),
- *   s = clamp((Gamma_a / Gamma_lattice - SUMMED_FROM) / (SUMMED_FULL - SUMMED_FROM), 0, 1),
+ *   s = transition(Gamma_a / Gamma_lattice, SUMMED_FROM, SUMMED_FULL),
  * so that the density of a particle whose support fills up moves to the
  * summed one smoothly: switched at one Gamma, it jumped by the 7%, a
  * pressure step of 0.07 rho0 c0^2 (4.8e5 Pa in the 1 m/s binder scene with
@@ -514,7 +515,7 @@ static inline real summed_density_pull(const continuity_sums *sums, int a, GLOBA
     if (!gas_density_summed(a, kind, material, materials, p))
         return REAL(0.0);
     const real fill = sums->shepard / p->lattice_shepard;
-    const real s = fmin(REAL(1.0), fmax(REAL(0.0), (fill - SUMMED_FROM) / (SUMMED_FULL - SUMMED_FROM)));
+    const real s = transition(fill, SUMMED_FROM, SUMMED_FULL);
     *continuity_share = REAL(1.0) - s;
     return s * (mass[a] * sums->kernel_sum / p->lattice_shepard - density[a]);
 }
@@ -711,7 +712,7 @@ KERNEL void fluid_forces(GLOBAL const real *position, GLOBAL const real *velocit
 
 static inline real transport_share(real cut)
 {
-    return fmin(REAL(1.0), fmax(REAL(0.0), (TRANSPORT_NO_CUT - cut) / (TRANSPORT_NO_CUT - TRANSPORT_FULL_CUT)));
+    return transition(cut, TRANSPORT_NO_CUT, TRANSPORT_FULL_CUT);
 }
 
 /* Particle shifting (Lind et al. 2012; Skillen et al. 2013): after a step,

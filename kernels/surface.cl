@@ -38,6 +38,7 @@
 #include "neighbours.h"
 #include "smoothing.h"
 #include "surface_params.h"
+#include "transition.h"
 #include "vec3.h"
 
 #define GAS_CONSTANT REAL(8.314462618) /* J/(mol K) */
@@ -96,13 +97,6 @@ static inline real surface_loop_centre(const grid_geometry *g, const surface_par
     grid_cell_coords(g, cell[a], cc);
     grid_point(position, a, x);
     return surface_support2(p);
-}
-
-/* The linear transition function f[x, x1, x2] of Fuchs et al. 2022 Eq. 21:
- * 0 below x1, 1 above x2, linear between (x1 < x2). */
-static inline real transition(real x, real x1, real x2)
-{
-    return fmin(fmax((x - x1) / (x2 - x1), REAL(0.0)), REAL(1.0));
 }
 
 /* The correction of the normals reaches from c_sf = WETTING_C1 (f = 0) to

@@ -98,10 +98,10 @@ SCENE = {
 # (it ran 92 min beside other runs); the 2D slices all run to 0.1 ms
 RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.0e-6),
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
-# with the gas phase (the gas's steps are ten times shorter than the
-# binder's): at 1 m/s the whole 0.1 ms, at 10 m/s the impact and the
-# spreading, 0.04 ms, at 50 m/s the splash, 10 us; in 3D at 10 m/s to the
-# end of the case without the gas, 0.05 ms (about 51000 steps of 420000
+# with the gas phase (the gas's barrier makes the steps six to ten times
+# shorter than without it): at 1 m/s the whole 0.1 ms, at 10 m/s the impact
+# and the spreading, 0.04 ms, at 50 m/s the splash, 10 us; in 3D at 10 m/s to
+# the end of the case without the gas, 0.05 ms (about 51000 steps of 414176
 # particles: a GPU's run; 1.7 steps/s on 2 cores)
 GAS_RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (4.0e-5, 2.0e-6), (2, 50): (1.0e-5, 5.0e-7),
            (3, 10): (5.0e-5, 2.5e-6)}
@@ -144,18 +144,18 @@ GAS_NOTE = """
 # what a gas case's header adds about its own run
 GAS_RESULTS = {
     (2, 1): ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 69 min on 2 cores. The"
-        "\n# droplet soaks into the bed as without the gas, to 2.4 um above the"
-        "\n# substrate, and loosens it under itself from 0.636 to 0.360. In flight it"
-        "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
+             "\n# droplet soaks into the bed as without the gas, to 2.4 um above the"
+             "\n# substrate, and loosens it under itself from 0.636 to 0.360. In flight it"
+             "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
     (2, 10): ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores. The"
-         "\n# gas's pressure (1st to 99th percentile) stays between -13 and 27 kPa. The"
-         "\n# droplet soaks into the bed (its lowest particle 4.9 um above the"
-         "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.434 under the"
-         "\n# droplet, less than without the gas (0.385; docs/RESULTS.md)."),
+              "\n# gas's pressure (1st to 99th percentile) stays between -13 and 27 kPa. The"
+              "\n# droplet soaks into the bed (its lowest particle 4.9 um above the"
+              "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.434 under the"
+              "\n# droplet, less than without the gas (0.385; docs/RESULTS.md)."),
     (2, 50): ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 91057 steps, 20 min on"
-         "\n# 2 cores. The sheets reach the side walls at 3.5 us and the lid at 6 us,"
-         "\n# and the bed under the droplet loosens from 0.636 to 0.434, as without"
-         "\n# the gas (0.406; docs/RESULTS.md)."),
+              "\n# 2 cores. The sheets reach the side walls at 3.5 us and the lid at 6 us,"
+              "\n# and the bed under the droplet loosens from 0.636 to 0.434, as without"
+              "\n# the gas (0.406; docs/RESULTS.md)."),
     (3, 10): ("\n# In 3D at 10 m/s: 9.8e-10 s, 0.05 ms in about 51000 steps of 414176"
               "\n# particles, a GPU's run (1.7 steps/s on 2 cores, 8 h). Its first 4 us"
               "\n# (4072 steps): the droplet slows and spreads as without the gas (at 4 us its"
