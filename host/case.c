@@ -143,6 +143,8 @@ static const choice pressure_choices[] = {{"renormalised", PRESSURE_RENORMALISED
 static const choice viscosity_choices[] = {{"laminar", VISCOSITY_LAMINAR, 0},
                                            {"artificial", VISCOSITY_ARTIFICIAL, 0},
                                            {NULL, 0, 0}};
+static const choice tension_form_choices[] = {
+    {"csf", TENSION_FORM_CSF, 0}, {"conservative", TENSION_FORM_CONSERVATIVE, 0}, {NULL, 0, 0}};
 static const choice bool_choices[] = {{"false", 0, 0}, {"true", 1, 0}, {NULL, 0, 0}};
 static const choice integration_choices[] = {{"explicit", AMSPH_THERMAL_EXPLICIT, 0},
                                              {"midpoint", AMSPH_THERMAL_MIDPOINT, 0},
@@ -440,6 +442,14 @@ static const key_spec specs[] = {
     {.section = SEC_SURFACE, .key = "tension", .type = VT_CHOICE, .choices = bool_choices,
      .def = 1, .offset = SURFACE(tension),
      .doc = "The curvature force -σ κ n (Russell Eq. 3.31)"},
+    {.section = SEC_SURFACE, .key = "tension_form", .type = VT_CHOICE, .choices = tension_form_choices,
+     .def = TENSION_FORM_CSF, .offset = SURFACE(tension_form), .rule = "conservative: a constant surface tension",
+     .doc = "How the tension acts: `csf`, the force σ κ on each liquid particle along its colour gradient "
+            "(Russell Eq. 3.31; with a gas Fuchs et al. 2022 Eq. 24), whose sum over a closed drop is the "
+            "curvature's error, not zero; `conservative`, that force plus its difference to the divergence "
+            "of the capillary stress σ |n| (1 - n̂ n̂) (Lafaurie et al. 1994), summed pair by pair, "
+            "smoothed three times over the liquid: the tension's net on a body of liquid is then zero, or "
+            "the pull of the solids it wets"},
     {.section = SEC_SURFACE, .key = "marangoni", .type = VT_CHOICE, .choices = bool_choices,
      .def = 0, .offset = SURFACE(marangoni), .rule = "needs temperatures",
      .doc = "The Marangoni force dσ/dT ∇_s T |n| (Russell Eq. 3.35)"},
@@ -1714,6 +1724,29 @@ static int check_surface_tension(parser *p, int i)
     return 0;
 }
 
+/* The conservative form of the tension takes a constant sigma: a sigma
+ * that varies along the surface would add its Marangoni part to the
+ * capillary stress's divergence, which is not validated. */
+static int check_tension_form(parser *p)
+{
+    const amsph_case *c = p->c;
+    if (c->surface.tension_form != TENSION_FORM_CONSERVATIVE)
+        return 0;
+    if (c->surface.marangoni)
+        return fail(p, p->surface_line,
+                    "'surface.tension_form: conservative' has no Marangoni force: use 'tension_form: csf' "
+                    "with 'marangoni: true'");
+    for (int i = 0; i < c->n_materials; i++) {
+        const amsph_material *m = &c->materials[i];
+        if (m->surface_tension_slope != 0 || m->surfactant_excess > 0)
+            return fail(p, p->material_line[i],
+                        "material '%s': 'surface.tension_form: conservative' needs a constant surface tension "
+                        "(no 'surface_tension_slope' or 'surfactant_excess'); use 'tension_form: csf'",
+                        m->name);
+    }
+    return 0;
+}
+
 /* The surface module works on the fluid module's free surfaces; Marangoni
  * flow needs temperatures; the surface terms' smoothing length is at least
  * the fluid's. */
@@ -1735,7 +1768,7 @@ static int finish_surface(parser *p)
     for (int i = 0; i < c->n_materials; i++)
         if (check_surface_tension(p, i))
             return CASE_ERROR;
-    return 0;
+    return check_tension_form(p);
 }
 
 /* The temperature history sets every particle's temperature: no thermal

@@ -256,6 +256,9 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_grains_allocate(s));
     if (c->grains.enabled && c->surface.enabled)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->contact_pull));
+    if (c->surface.enabled && c->surface.tension && c->surface.tension_form == TENSION_FORM_CONSERVATIVE)
+        for (int k = 0; k < 2; ++k)
+            AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->tension_share[k]));
     AMSPH_CHECK(upload_materials(s));
     return c->fluid.enabled ? amsph_fluid_start(s) : 0;
 }
@@ -284,8 +287,10 @@ void amsph_sim_free(amsph_sim *s)
     amsph_buffer_free(s->backend, s->others);
     amsph_buffer_free(s->backend, s->shift);
     amsph_buffer_free(s->backend, s->contact_pull);
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2; ++k) {
         amsph_buffer_free(s->backend, s->surface_blocks[k]);
+        amsph_buffer_free(s->backend, s->tension_share[k]);
+    }
     amsph_buffer_free(s->backend, s->plain_liquid);
     amsph_buffer_free(s->backend, s->materials);
     if (s->config.thermal.enabled)

@@ -95,6 +95,9 @@ typedef struct {
     amsph_buffer *shift;     /* shifting displacements, three reals per particle (amsph_fluid_shifts) */
     amsph_buffer *contact_pull; /* four reals per particle: the surface tension's pull and its weight
                                    (surface with grains; kernels/surface.cl surface_contact_pull) */
+    amsph_buffer *tension_share[2]; /* four reals per particle each, the conservative form's share
+                                       of the tension and its smoothing (kernels/surface.cl
+                                       surface_share; surface.tension_form: conservative) */
     amsph_buffer *surface_blocks[2]; /* an int per block of cells: the blocks' distance from the
                                         liquid (surface; kernels/surface.cl surface_blocks_*) */
     amsph_buffer *plain_liquid;      /* one int: the liquid particles without a contact angle

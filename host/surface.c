@@ -29,6 +29,7 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     p->tension = st->tension;
     p->reaction = st->tension && s->config.grains.enabled;
     p->marangoni = st->marangoni;
+    p->form = st->tension ? st->tension_form : TENSION_FORM_CSF;
     for (int m = 0; m < s->config.n_materials; ++m) {
         const amsph_material *mat = &s->config.materials[m];
         p->temperature |= mat->surface_tension_slope != 0 || mat->surfactant_excess > 0;
@@ -116,6 +117,28 @@ static int grain_reaction(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_a
                         field(s, AMSPH_FIELD_ACCELERATION));
 }
 
+/* The passes of the conservative form's share (kernels/surface.cl
+ * surface_share). On young_laplace_gas_2d (quintic, h_st = 1.2 dx) the
+ * droplet's surface clumped with one pass (closest pair 0.72 dx at 10 s,
+ * largest speed 5.4e-3 m/s) and came to rest with three (0.83 dx and
+ * 8.8e-4 m/s, as the CSF force alone: 0.82 dx, 6.5e-4 m/s); BENCHMARKS.md. */
+#define TENSION_SHARE_PASSES 3
+
+/* The conservative form's share, smoothed TENSION_SHARE_PASSES times
+ * between the two tension_share buffers and added to the acceleration. */
+static int share_tension(amsph_sim *s, amsph_arg cells, amsph_arg grid, amsph_arg cell_start, amsph_arg params)
+{
+    for (int k = 0; k < TENSION_SHARE_PASSES; ++k)
+        AMSPH_CHECK(AMSPH_LAUNCH(s->backend, "surface_share", s->particles.n, field(s, AMSPH_FIELD_POSITION),
+                                 field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS), field(s, AMSPH_FIELD_KIND),
+                                 field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->materials), cells,
+                                 amsph_arg_int(s->particles.n), grid, cell_start, params,
+                                 amsph_arg_buffer(s->tension_share[k % 2]),
+                                 amsph_arg_int(k == TENSION_SHARE_PASSES - 1),
+                                 amsph_arg_buffer(s->tension_share[(k + 1) % 2]), field(s, AMSPH_FIELD_ACCELERATION)));
+    return 0;
+}
+
 /* Each block's distance from the nearest liquid, in blocks (kernels/surface.cl,
  * surface_blocks_*): the liquid counted per block, then spread along each
  * axis in turn between the two block buffers; *away is the one that ends
@@ -188,11 +211,15 @@ int amsph_surface_forces(amsph_sim *s)
                         field(s, AMSPH_FIELD_MASS), temperature(s),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                         field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_NORMAL),
-                        field(s, AMSPH_FIELD_NORMAL_WEIGHT), field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,
+                        field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
+                        field(s, AMSPH_FIELD_RAW_CURVATURE), cells, amsph_arg_int(n), grid,
                         cell_start, amsph_arg_buffer(s->materials), params,
                         field(s, AMSPH_FIELD_ACCELERATION), field(s, AMSPH_FIELD_CURVATURE),
                         field(s, AMSPH_FIELD_SURFACE_TENSION),
-                        amsph_arg_buffer(s->surface.reaction ? s->contact_pull : s->work)));
+                        amsph_arg_buffer(s->surface.reaction ? s->contact_pull : s->work),
+                        amsph_arg_buffer(s->surface.form == TENSION_FORM_CONSERVATIVE ? s->tension_share[0] : s->work)));
+    if (s->surface.form == TENSION_FORM_CONSERVATIVE)
+        AMSPH_CHECK(share_tension(s, cells, grid, cell_start, params));
     return s->surface.reaction ? grain_reaction(s, cells, grid, cell_start, away, params) : 0;
 }
 

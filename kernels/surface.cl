@@ -30,7 +30,11 @@
  *                      with p.wetting)
  *   surface_curvature  kappa_a of the particles with a normal (Eqs. 3.27-3.29, cap)
  *   surface_force      smoothed kappa (Eq. 3.30), the CSF force (Eq. 3.31) and
- *                      the Marangoni force (Eq. 3.35) on fluid particles.
+ *                      the Marangoni force (Eq. 3.35) on fluid particles; in
+ *                      the conservative form also the capillary stress's
+ *                      divergence, and its difference to the CSF force
+ *   surface_share      (conservative form) that difference shared out over
+ *                      the liquid, so that the tension's sum is the stress's.
  * W is the case's smoothing kernel at h_st (kernels/smoothing.h). */
 #include "device.h"
 #include "kinds.h"
@@ -202,6 +206,92 @@ static inline int takes_surface_force(GLOBAL const int *kind, GLOBAL const int *
                                       const surface_params *p, int a)
 {
     return is_liquid(kind, material, materials, a) && shepard[a] >= p->min_shepard;
+}
+
+/* Whether surface_force writes the surface force of particle a (and
+ * surface_contact_pull leaves it): the particles that take the CSF force;
+ * in the conservative form every liquid particle, as each takes its
+ * pairs' share of the capillary stress, of its neighbours' stress too. */
+static inline int records_surface_force(GLOBAL const int *kind, GLOBAL const int *material,
+                                        GLOBAL const real *materials, GLOBAL const real *shepard,
+                                        const surface_params *p, int a)
+{
+    return p->form == TENSION_FORM_CONSERVATIVE ? is_liquid(kind, material, materials, a)
+                                                : takes_surface_force(kind, material, materials, shepard, p, a);
+}
+
+/* The unit normal that the surface stress of particle a takes: the (turned)
+ * unit normal n^_a where it has one (psi_a > 0), else n_a / |n_a| (the CSF
+ * force acts on every liquid particle with a colour gradient); 0 without. */
+static inline void stress_normal(GLOBAL const real *normal, GLOBAL const real *unit_normal,
+                                 GLOBAL const real *normal_weight, int a, real n_hat[3])
+{
+    const real size = normal_size(normal, a);
+    for (int d = 0; d < 3; ++d)
+        n_hat[d] = normal_weight[a] > REAL(0.0) ? unit_normal[3 * a + d]
+                   : size > REAL(0.0)           ? normal[3 * a + d] / size
+                                                : REAL(0.0);
+}
+
+/* T . r for the capillary stress of the interface (Lafaurie et al. 1994,
+ * J. Comput. Phys. 113, Eq. 6; in SPH Hu & Adams 2006, J. Comput. Phys.
+ * 213, Eq. 18)
+ *   T = sigma |n| (1 - n^ n^),
+ * its size sigma |n| given, n^ the unit normal of stress_normal. */
+static inline void capillary_stress_dot(real size, const real n_hat[3], const real r[3], real out[3])
+{
+    const real along = dot3(n_hat, r);
+    for (int d = 0; d < 3; ++d)
+        out[d] = size * (r[d] - along * n_hat[d]);
+}
+
+/* The size sigma_a |n_a| of the capillary stress of particle a, and its
+ * unit normal into n_hat: a liquid that takes the surface force carries
+ * it (sigma at temperature t_a); 0 elsewhere. */
+static inline real capillary_stress_size(GLOBAL const int *kind, GLOBAL const int *material,
+                                         GLOBAL const real *materials, GLOBAL const real *shepard,
+                                         GLOBAL const real *normal, GLOBAL const real *unit_normal,
+                                         GLOBAL const real *normal_weight, const surface_params *p, int a,
+                                         real t_a, real n_hat[3])
+{
+    real slope;
+    stress_normal(normal, unit_normal, normal_weight, a, n_hat);
+    return takes_surface_force(kind, material, materials, shepard, p, a)
+               ? surface_tension(materials, material[a], t_a, &slope) * normal_size(normal, a)
+               : REAL(0.0);
+}
+
+/* The weight 1/Gamma_b of particle b's side of a stress pair (0 where no
+ * Shepard sum was taken). */
+static inline real stress_weight(GLOBAL const real *shepard, int b)
+{
+    return shepard[b] > REAL(0.0) ? REAL(1.0) / shepard[b] : REAL(0.0);
+}
+
+/* Pair b's term of the divergence of the capillary stress at liquid
+ * particle a, free-surface consistent as the colour gradient is (Russell
+ * 2018 Eq. 3.26: the weights 1/Gamma),
+ *   f_a = sum_b V_b (T_a / Gamma_b + T_b / Gamma_a) . grad_a W_ab,
+ * added to stress (per volume); stress_a and n_a are a's stress size and
+ * normal (capillary_stress_size), f_v_b = V_b f with grad_a W_ab = f r_ab.
+ * A pair's terms on a and b are equal and opposite (grad_b W_ba =
+ * -grad_a W_ab), so their sum over a body of liquid is zero; its pairs with
+ * solids (T_r = 0) leave the contact-line pull, whose reaction
+ * surface_contact_pull gives the solids. */
+static inline void capillary_stress_pair(GLOBAL const int *kind, GLOBAL const int *material,
+                                         GLOBAL const real *materials, GLOBAL const real *shepard,
+                                         GLOBAL const real *normal, GLOBAL const real *unit_normal,
+                                         GLOBAL const real *normal_weight, GLOBAL const real *temperature,
+                                         const surface_params *p, real stress_a, const real n_a[3], int a, int b,
+                                         const real r_ab[3], real f_v_b, real stress[3])
+{
+    real n_b[3], t_a[3], t_b[3];
+    const real stress_b = capillary_stress_size(kind, material, materials, shepard, normal, unit_normal,
+                                                normal_weight, p, b, p->temperature ? temperature[b] : REAL(0.0), n_b);
+    capillary_stress_dot(stress_a * stress_weight(shepard, b), n_a, r_ab, t_a);
+    capillary_stress_dot(stress_b * stress_weight(shepard, a), n_b, r_ab, t_b);
+    for (int d = 0; d < 3; ++d)
+        stress[d] += f_v_b * (t_a[d] + t_b[d]);
 }
 
 /* The particles near the liquid. The liquid's forces (surface_force) read
@@ -609,6 +699,13 @@ static inline real interface_viscosity_pair_alpha(GLOBAL const int *kind, GLOBAL
     return fmax(alpha_a, interface_viscosity_alpha(kind, material, materials, normal, p, b));
 }
 
+/* Component d of the CSF force per volume on liquid particle a (see surface_force). */
+static inline real csf_force(int gas, real sigma, real kappa, const real grad_c[3], GLOBAL const real *normal, int a,
+                             int d)
+{
+    return gas ? sigma * kappa * grad_c[d] : -sigma * kappa * normal[3 * a + d];
+}
+
 /* On fluid particles, with the curvature smoothed over the particles with a
  * normal (Russell 2018 Eq. 3.30),
  *   kappa~_a = (1/Gamma*_a) sum_b psi_b V_b kappa_b W_ab,
@@ -630,26 +727,37 @@ static inline real interface_viscosity_pair_alpha(GLOBAL const int *kind, GLOBAL
  * p.interface_viscosity, the interface viscosity (interface_viscosity_factor)
  * joins the acceleration. With p.reaction, pull[4 a .. 4 a + 2] records the
  * CSF force f_a V_a of each particle that takes it (the Marangoni force
- * not), and pull[4 a + 3] 0, for surface_contact_pull. */
+ * not), and pull[4 a + 3] 0, for surface_contact_pull. In the conservative
+ * form (p.form) it also sums the capillary stress's divergence f^stress_a
+ * (capillary_stress_pair), records that in pull in place of the CSF force,
+ * and leaves share[4 a .. 4 a + 3] = ((f^stress_a - f^csf_a) V_a, Gamma'_a)
+ * for surface_share, on every particle (0 off the liquid). */
 KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *velocity, GLOBAL const real *density,
                           GLOBAL const real *mass, GLOBAL const real *temperature,
                           GLOBAL const int *kind, GLOBAL const int *material,
-                          GLOBAL const real *shepard, GLOBAL const real *normal,
+                          GLOBAL const real *shepard, GLOBAL const real *normal, GLOBAL const real *unit_normal,
                           GLOBAL const real *normal_weight, GLOBAL const real *raw_curvature, GLOBAL const int *cell, int n,
                           grid_geometry g, GLOBAL const int *cell_start,
                           GLOBAL const real *materials, surface_params p,
                           GLOBAL real *acceleration, GLOBAL real *curvature,
-                          GLOBAL real *tension, GLOBAL real *pull)
+                          GLOBAL real *tension, GLOBAL real *pull, GLOBAL real *share)
 {
     FOR_EACH_ITEM(a, n)
     {
         const real t_a = p.temperature ? temperature[a] : REAL(0.0);
+        real liquid_shepard = REAL(0.0); /* Gamma'_a over the liquid (conservative form) */
         const real theta0 = contact_angle(kind, material, materials, &p, a);
         real gamma_star = REAL(0.0), kappa_sum = REAL(0.0);
         real grad_t[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         real grad_c[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 19 (with a gas) */
         real damping[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}; /* Fuchs Eq. 31 */
+        real stress[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};  /* the capillary stress's divergence */
         const real alpha_a = interface_viscosity_alpha(kind, material, materials, normal, &p, a);
+        real n_a[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        const real stress_a = p.form == TENSION_FORM_CONSERVATIVE
+                                  ? capillary_stress_size(kind, material, materials, shepard, normal, unit_normal,
+                                                          normal_weight, &p, a, t_a, n_a)
+                                  : REAL(0.0);
         if (is_liquid(kind, material, materials, a)) {
             int cc[3];
             real x_a[3];
@@ -683,6 +791,13 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
                     continue;
                 }
                 const real v_b = mass[b] / density[b];
+                if (p.form == TENSION_FORM_CONSERVATIVE) {
+                    capillary_stress_pair(kind, material, materials, shepard, normal, unit_normal, normal_weight,
+                                          temperature, &p, stress_a, n_a, a, b, r_ab,
+                                          v_b * smoothing_grad_factor(r, p.h), stress);
+                    if (is_liquid(kind, material, materials, b))
+                        liquid_shepard += v_b * smoothing_w(r, p.h);
+                }
                 if (normal_weight[b] > REAL(0.0) && shapes_curvature(theta0, kind[b])) {
                     const real w = normal_weight[b] * v_b * smoothing_w(r, p.h);
                     gamma_star += w;
@@ -700,14 +815,23 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
         const real sigma = surface_tension(materials, material[a], t_a, &d_sigma);
         curvature[a] = kappa;
         tension[a] = sigma;
-        if (takes_surface_force(kind, material, materials, shepard, &p, a)) {
+        const int csf = p.tension && takes_surface_force(kind, material, materials, shepard, &p, a);
+        if (p.form == TENSION_FORM_CONSERVATIVE) {
+            for (int d = 0; d < 3; ++d) {
+                const real f_csf = csf ? csf_force(p.gas, sigma, kappa, grad_c, normal, a, d) : REAL(0.0);
+                share[4 * a + d] = (stress[d] - f_csf) * mass[a] / density[a];
+            }
+            share[4 * a + 3] = liquid_shepard;
+        }
+        if (records_surface_force(kind, material, materials, shepard, &p, a)) {
             real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
-            if (p.tension)
+            if (csf)
                 for (int d = 0; d < 3; ++d)
-                    force[d] = p.gas ? sigma * kappa * grad_c[d] : -sigma * kappa * normal[3 * a + d];
+                    force[d] = csf_force(p.gas, sigma, kappa, grad_c, normal, a, d);
             if (p.reaction) {
                 for (int d = 0; d < 3; ++d)
-                    pull[4 * a + d] = force[d] * mass[a] / density[a];
+                    pull[4 * a + d] =
+                        (p.form == TENSION_FORM_CONSERVATIVE ? stress[d] : force[d]) * mass[a] / density[a];
                 pull[4 * a + 3] = REAL(0.0);
             }
             if (p.marangoni) {
@@ -730,26 +854,74 @@ KERNEL void surface_force(GLOBAL const real *position, GLOBAL const real *veloci
     }
 }
 
-/* The unit normal that the surface stress of particle a takes: the (turned)
- * unit normal n^_a where it has one (psi_a > 0), else n_a / |n_a| (the CSF
- * force acts on every liquid particle with a colour gradient); 0 without. */
-static inline void stress_normal(GLOBAL const real *normal, GLOBAL const real *unit_normal,
-                                 GLOBAL const real *normal_weight, int a, real n_hat[3])
+/* One pass of the conservative form's share (tension_form: conservative).
+ * The CSF force holds the Young-Laplace jump and keeps a surface's
+ * particles apart, but its sum over a closed body of liquid is not zero
+ * (the curvature's error along the surface; BENCHMARKS.md, "Where the push
+ * comes from"). The capillary stress's divergence (capillary_stress_pair)
+ * sums to zero over any body, but its pull along the surface clumps the
+ * surface particles (the tensile instability: 0.3 dx apart within 6 s on
+ * young_laplace_gas_2d). surface_force applies the CSF force F^csf_a and
+ * leaves in share the difference D_a = (f^stress_a - f^csf_a) V_a and
+ * Gamma'_a = sum_b V_b W_ab over the liquid b; each pass smooths it over
+ * the liquid, conservatively (the weights V_a W_ab / Gamma'_b of each b's
+ * share sum to 1 over the a):
+ *   D'_a = V_a sum_b W_ab D_b / Gamma'_b,
+ * and the last adds D'_a / m_a to the acceleration instead. So every
+ * liquid particle takes
+ *   F_a = F^csf_a + (S^k D)_a,   sum_a F_a = sum_a F^stress_a,
+ * the stress's net (zero on a closed body, the contact-line pull where
+ * the liquid wets a solid) with the CSF force's distribution at the
+ * scale of a particle: S^k damps the differences between neighbours that
+ * drive the clumping. k = TENSION_SHARE_PASSES (host/surface.c). smoothed
+ * takes D' (and Gamma') where the pass is not the last. */
+KERNEL void surface_share(GLOBAL const real *position, GLOBAL const real *density, GLOBAL const real *mass,
+                          GLOBAL const int *kind, GLOBAL const int *material, GLOBAL const real *materials,
+                          GLOBAL const int *cell, int n, grid_geometry g, GLOBAL const int *cell_start,
+                          surface_params p, GLOBAL const real *share, int last, GLOBAL real *smoothed,
+                          GLOBAL real *acceleration)
 {
-    const real size = normal_size(normal, a);
-    for (int d = 0; d < 3; ++d)
-        n_hat[d] = normal_weight[a] > REAL(0.0) ? unit_normal[3 * a + d]
-                   : size > REAL(0.0)           ? normal[3 * a + d] / size
-                                                : REAL(0.0);
+    FOR_EACH_ITEM(a, n)
+    {
+        real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        const int liquid = is_liquid(kind, material, materials, a);
+        if (liquid) {
+            int cc[3];
+            real x_a[3];
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (!is_liquid(kind, material, materials, b) || !(share[4 * b + 3] > REAL(0.0)) ||
+                    !grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
+                const real w = smoothing_w(sqrt(r2), p.h) / share[4 * b + 3];
+                for (int d = 0; d < 3; ++d)
+                    sum[d] += w * share[4 * b + d];
+            }
+        }
+        if (last && liquid) {
+            for (int d = 0; d < 3; ++d)
+                acceleration[3 * a + d] += sum[d] / density[a];
+        } else if (!last) {
+            for (int d = 0; d < 3; ++d)
+                smoothed[4 * a + d] = sum[d] * mass[a] / density[a];
+            smoothed[4 * a + 3] = share[4 * a + 3];
+        }
+    }
 }
 
 /* The surface tension's pull between the liquid and the solids it wets
  * (after surface_force, which leaves sigma_a in tension and, on a liquid a,
  * its CSF force F_a = f_a V_a in pull: -sigma_a kappa~_a V_a n_a, Russell
- * 2018 Eq. 3.31, or with a gas Fuchs et al. 2022 Eq. 24): pull[4 i .. 4 i + 2] gets
+ * 2018 Eq. 3.31, or with a gas Fuchs et al. 2022 Eq. 24; in the
+ * conservative form the capillary stress's divergence f^stress_a V_a, which
+ * its share gives the liquid in sum): pull[4 i .. 4 i + 2] gets
  *   on a solid r    the contact-line force of the liquid on it
- *                   F_r = -sum_a V_a V_r T_a . grad_a W_ar,  T_a = sigma_a |n_a| (1 - n^_a n^_a),
- * and pull[4 i + 3] its weight |F_r| (0 elsewhere). T is the capillary
+ *                   F_r = -sum_a V_a V_r w_r T_a . grad_a W_ar,  T_a = sigma_a |n_a| (1 - n^_a n^_a),
+ * (w_r = 1/Gamma_r in the conservative form, as capillary_stress_pair
+ * weighs the pair; 1 otherwise) and pull[4 i + 3] its weight |F_r| (0
+ * elsewhere). T is the capillary
  * stress of the interface (Lafaurie et al. 1994, J. Comput. Phys. 113,
  * Eq. 6; in SPH Hu & Adams 2006, J. Comput. Phys. 213, Eq. 18), whose
  * divergence is the CSF force: the net CSF force on a body of liquid is the
@@ -782,6 +954,7 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
         real force[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         const real v_i = mass[i] / density[i];
         const int solid = kind[i] != KIND_FLUID && colour_material(materials, material, i);
+        const real weight_r = p.form == TENSION_FORM_CONSERVATIVE ? stress_weight(shepard, i) : REAL(1.0);
         if (solid && blocks_from_liquid(blocks_away, &g, &p, cell[i]) <= p.near_blocks - 2 &&
             fluid_within_support(&g, cell_start, fluid_count, &p, cell[i])) {
             int cc[3];
@@ -795,14 +968,14 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                     continue;
                 stress_normal(normal, unit_normal, normal_weight, a, n_hat);
                 /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
-                const real share = tension[a] * normal_size(normal, a) * mass[a] / density[a] * v_i *
-                                   smoothing_grad_factor(sqrt(r2), p.h);
-                const real along = dot3(n_hat, r_ra);
+                real t_dot_r[3];
+                capillary_stress_dot(tension[a] * normal_size(normal, a), n_hat, r_ra, t_dot_r);
+                const real share = mass[a] / density[a] * v_i * smoothing_grad_factor(sqrt(r2), p.h) * weight_r;
                 for (int d = 0; d < 3; ++d)
-                    force[d] += share * (r_ra[d] - along * n_hat[d]);
+                    force[d] += share * t_dot_r[d];
             }
         }
-        if (!takes_surface_force(kind, material, materials, shepard, &p, i)) {
+        if (!records_surface_force(kind, material, materials, shepard, &p, i)) {
             for (int d = 0; d < 3; ++d)
                 pull[4 * i + d] = force[d];
             pull[4 * i + 3] = solid ? sqrt(dot3(force, force)) : REAL(0.0);
@@ -831,7 +1004,9 @@ KERNEL void surface_pull_component(GLOBAL const real *pull, int n, int c, GLOBAL
  * rest of the liquid's net CSF force to the solids in proportion to their
  * contact-line force, so that the surface tension's forces sum to zero
  * over liquid and solids (walls and fixed solids take their share, held),
- * while each contact line keeps the direction of its own pull. */
+ * while each contact line keeps the direction of its own pull. In the
+ * conservative form the liquid's net is the stress's, whose pairs with the
+ * solids F_r answers pair by pair: c is 0 to round-off. */
 KERNEL void surface_grain_reaction(GLOBAL const int *kind, GLOBAL const real *mass, GLOBAL const real *pull,
                                    int n, real cx, real cy, real cz, GLOBAL real *acceleration)
 {

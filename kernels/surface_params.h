@@ -4,6 +4,8 @@
 #ifndef AMSPH_SURFACE_PARAMS_H
 #define AMSPH_SURFACE_PARAMS_H
 
+#include "surface_options.h"
+
 #ifndef AMSPH_SHARED_REAL
 #define AMSPH_SHARED_REAL real
 #endif
@@ -22,6 +24,7 @@ typedef struct {
     int temperature;                 /* 1: sigma or the solid colour depends on T (the temperature
                                         buffer is read) */
     int gas;                         /* 1: the case has a gas (the CSF force of Fuchs et al. 2022 Eq. 24) */
+    int form;                        /* TENSION_FORM_* with the tension; TENSION_FORM_CSF without */
     int wetting;                     /* 1: a material has a contact angle (Fuchs et al. 2022
                                         Eqs. 27-29); 0: every particle is one colour */
     int blocks[3];                   /* blocks of `reach` cells per axis (1 on unused axes; the

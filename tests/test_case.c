@@ -338,6 +338,17 @@ static const bad_case bad_cases[] = {
     {"marangoni without temperatures", SURFACE_MAT("") "fluid: {}\nsurface: {marangoni: true}\n",
      NAME ":17: 'surface.marangoni' needs temperatures: give every geometry block a 'temperature' "
           "(or add the thermal module)"},
+    {"conservative tension with Marangoni",
+     SURFACE_MAT("") "    temperature: 300\nfluid: {}\nsurface: {tension_form: conservative, marangoni: true}\n",
+     NAME ":18: 'surface.tension_form: conservative' has no Marangoni force: use 'tension_form: csf' with "
+          "'marangoni: true'"},
+    {"conservative tension with a temperature-dependent sigma",
+     SURFACE_MAT(", surface_tension: 1, surface_tension_slope: -1e-4") "    temperature: 300\nfluid: {}\n"
+         "surface: {tension_form: conservative}\n",
+     NAME ":9: material 'water': 'surface.tension_form: conservative' needs a constant surface tension (no "
+          "'surface_tension_slope' or 'surfactant_excess'); use 'tension_form: csf'"},
+    {"unknown tension form", SURFACE_MAT("") "fluid: {}\nsurface: {tension_form: stress}\n",
+     NAME ":17: 'surface.tension_form' must be one of csf, conservative; got 'stress'"},
     {"surface smoothing below the fluid's", SURFACE_MAT("") "fluid: {}\nsurface: {h_over_dx: 1.1}\n",
      NAME ":17: 'surface.h_over_dx' (1.1) must be at least 'h_over_dx' (1.2)"},
     {"surface normal cut-off above 1", SURFACE_MAT("") "fluid: {}\nsurface: {normal_cutoff: 2}\n",

@@ -36,6 +36,8 @@
  *           momentum stays 0 and their centre of mass put while the surface
  *           tension pulls them together; both backends agree.
  *   wet_gas the same in a gas: the same books, liquid, grain and gas.
+ *   wet_conservative, wet_gas_conservative
+ *           the same two in the conservative form of the tension.
  * `test_grains PART` runs one part (all without one); ctest runs each alone. */
 #include <float.h>
 #include <math.h>
@@ -760,6 +762,18 @@ static void test_wet(const char *text, const char *name)
               "backends differ: grain momentum %g and %g", grain_momentum[0], grain_momentum[1]);
 }
 
+/* text (wet_text or wet_gas_text) with `surface.tension_form: conservative`,
+ * whose stress pairs with the grain are its contact-line pull: the books
+ * close pair by pair, before the grains' share of the rest. */
+static const char *conservative_text(const char *text)
+{
+    static char out[sizeof wet_gas_text + 64];
+    const char *at = strstr(text, "surface: {");
+    const size_t head = (size_t)(at - text) + strlen("surface: {");
+    snprintf(out, sizeof out, "%.*stension_form: conservative, %s", (int)head, text, text + head);
+    return out;
+}
+
 int main(int argc, char **argv)
 {
     const char *part = argc > 1 ? argv[1] : "all";
@@ -781,5 +795,9 @@ int main(int argc, char **argv)
         test_wet(wet_text, "wet.yaml");
     if (!strcmp(part, "wet_gas") || !strcmp(part, "all"))
         test_wet(wet_gas_text, "wet_gas.yaml");
+    if (!strcmp(part, "wet_conservative") || !strcmp(part, "all"))
+        test_wet(conservative_text(wet_text), "wet_conservative.yaml");
+    if (!strcmp(part, "wet_gas_conservative") || !strcmp(part, "all"))
+        test_wet(conservative_text(wet_gas_text), "wet_gas_conservative.yaml");
     return testing_finish();
 }
