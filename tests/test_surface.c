@@ -39,20 +39,24 @@ static int download(amsph_sim *s, amsph_host_particles *h)
     return status;
 }
 
+/* A 2D liquid of sigma = 10 N/m on a 0.05 m lattice (quintic kernel), no
+ * gravity, at rest: the domain's line and the geometry's blocks. */
+#define STILL_LIQUID_CASE(domain, blocks)                                                         \
+    "dimension: 2\n" domain "dx: 0.05\n"                                                          \
+    "kernel: quintic\n"                                                                          \
+    "end_time: 1\n"                                                                              \
+    "output_interval: 1\n"                                                                       \
+    "fluid: {}\n"                                                                                \
+    "surface: {}\n"                                                                              \
+    "materials:\n"                                                                               \
+    "  - {name: liquid, density: 1000, sound_speed: 2, surface_tension: 10}\n"                   \
+    "geometry:\n" blocks
+
 /* A slab 0.5 m thick, periodic in x (1 m: 8 cells, the surface loop reaches
- * 2 cells each way), free on both faces, at rest without gravity. */
-static const char *slab_case = "dimension: 2\n"
-                               "domain: {min: [0, -0.5], max: [1, 1.0], periodic: [true, false]}\n"
-                               "dx: 0.05\n"
-                               "kernel: quintic\n"
-                               "end_time: 1\n"
-                               "output_interval: 1\n"
-                               "fluid: {}\n"
-                               "surface: {}\n"
-                               "materials:\n"
-                               "  - {name: liquid, density: 1000, sound_speed: 2, surface_tension: 10}\n"
-                               "geometry:\n"
-                               "  - {shape: box, kind: fluid, material: liquid, min: [0, 0], max: [1, 0.5]}\n";
+ * 2 cells each way), free on both faces. */
+static const char *slab_case =
+    STILL_LIQUID_CASE("domain: {min: [0, -0.5], max: [1, 1.0], periodic: [true, false]}\n",
+                      "  - {shape: box, kind: fluid, material: liquid, min: [0, 0], max: [1, 0.5]}\n");
 
 /* Across a flat surface the colour gradient n (Russell Eq. 3.26) must
  * integrate to the jump of the colour, 1 (sum of V n_y over the upper half
@@ -643,20 +647,10 @@ static int interface_viscosity_acceleration(double alpha0, disc_flow f, double *
 /* An L of liquid (0.75 m^2, sigma = 10 N/m, no gravity): two boxes on one
  * lattice, with convex corners and a concave one. Mirror symmetric about
  * y = x only, so the tension's errors need not cancel along (1, 1). */
-static const char *l_drop_case = "dimension: 2\n"
-                                 "domain: {min: [-1.5, -1.5], max: [1.5, 1.5]}\n"
-                                 "dx: 0.05\n"
-                                 "kernel: quintic\n"
-                                 "h_over_dx: 1.2\n"
-                                 "end_time: 1\n"
-                                 "output_interval: 1\n"
-                                 "fluid: {}\n"
-                                 "surface: {}\n"
-                                 "materials:\n"
-                                 "  - {name: liquid, density: 1000, sound_speed: 2, surface_tension: 10}\n"
-                                 "geometry:\n"
-                                 "  - {shape: box, kind: fluid, material: liquid, min: [-0.5, -0.5], max: [0, 0.5]}\n"
-                                 "  - {shape: box, kind: fluid, material: liquid, min: [0, -0.5], max: [0.5, 0]}\n";
+static const char *l_drop_case =
+    STILL_LIQUID_CASE("domain: {min: [-1.5, -1.5], max: [1.5, 1.5]}\n",
+                      "  - {shape: box, kind: fluid, material: liquid, min: [-0.5, -0.5], max: [0, 0.5]}\n"
+                      "  - {shape: box, kind: fluid, material: liquid, min: [0, -0.5], max: [0.5, 0]}\n");
 
 /* The net of the tension on the L at rest in the tension form `form`:
  * |sum_a m_a a_a| and sum_a |m_a a_a| (equal masses, so in units of m). */
