@@ -202,7 +202,7 @@ typedef struct {
     int enabled;
     int tension;          /* 1: the normal (curvature) force, default 1 */
     int marangoni;        /* 1: the Marangoni force, default 0 */
-    int tension_form;     /* TENSION_FORM_* (kernels/surface_params.h), default csf */
+    int tension_form;     /* TENSION_FORM_* (kernels/surface_options.h), default csf */
     double h_over_dx;     /* smoothing length of the surface terms / dx, default: support 3.6 dx */
     double normal_cutoff; /* a normal counts where |n| h >= this, default 0.1 */
     double min_shepard;   /* particles with a Shepard sum below this carry no surface force */

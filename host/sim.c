@@ -256,9 +256,6 @@ static int allocate_device_state(amsph_sim *s)
         AMSPH_CHECK(amsph_grains_allocate(s));
     if (c->grains.enabled && c->surface.enabled)
         AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->contact_pull));
-    if (c->surface.enabled && c->surface.tension && c->surface.tension_form == TENSION_FORM_CONSERVATIVE)
-        for (int k = 0; k < 2; ++k)
-            AMSPH_CHECK(amsph_buffer_alloc(b, (size_t)capacity * 4 * sizeof(amsph_real), &s->tension_share[k]));
     AMSPH_CHECK(upload_materials(s));
     return c->fluid.enabled ? amsph_fluid_start(s) : 0;
 }

@@ -71,6 +71,9 @@ int amsph_surface_allocate(amsph_sim *s)
     for (int k = 0; k < 2; ++k)
         AMSPH_CHECK(amsph_buffer_alloc(s->backend, (size_t)surface_block_count(p) * sizeof(int),
                                        &s->surface_blocks[k]));
+    for (int k = 0; k < 2 && p->form == TENSION_FORM_CONSERVATIVE; ++k)
+        AMSPH_CHECK(amsph_buffer_alloc(s->backend, (size_t)s->particles.capacity * 4 * sizeof(amsph_real),
+                                       &s->tension_share[k]));
     return amsph_buffer_alloc(s->backend, sizeof(int), &s->plain_liquid);
 }
 
