@@ -952,9 +952,9 @@ KERNEL void surface_share(GLOBAL const real *position, GLOBAL const real *densit
  * surface's unit conormals along its contact lines (2 sigma sin theta0 on a
  * 2D sessile drop, which its pressure on the wetted face balances). The
  * symmetric SPH divergence sum_b V_a V_b (T_a + T_b) . grad_a W_ab cancels
- * pair by pair inside the liquid; its part over solid neighbours (T_r = T_a,
- * solid_pair_weight) is that flux, and F_r its reaction on the solid at the contact line
- * (Newton's third law). n^_a is the turned normal of surface_wetting, so
+ * pair by pair inside the liquid; its part over solid neighbours (T_r =
+ * T_a, solid_pair_weight) is that flux, and F_r its reaction on the solid
+ * at the contact line (Newton's third law). n^_a is the turned normal of surface_wetting, so
  * F_r pulls at the contact angle. Solids are every particle of colour 1
  * but fluid: grains, fixed solids and walls (the last two are held). The
  * Marangoni force is not in the pull: its net on an open surface (the
@@ -989,8 +989,8 @@ KERNEL void surface_contact_pull(GLOBAL const real *position, GLOBAL const real 
                 /* -V_a V_r T_a . grad_a W_ar with grad_a W_ar = -f r_ra */
                 real t_dot_r[3];
                 capillary_stress_dot(tension[a] * normal_size(normal, a), n_hat, r_ra, t_dot_r);
-                const real share =
-                    mass[a] / density[a] * v_i * smoothing_grad_factor(sqrt(r2), p.h) * solid_pair_weight(shepard, a, i);
+                const real share = mass[a] / density[a] * v_i * smoothing_grad_factor(sqrt(r2), p.h) *
+                                   solid_pair_weight(shepard, a, i);
                 for (int d = 0; d < 3; ++d)
                     force[d] += share * t_dot_r[d];
             }

@@ -820,7 +820,8 @@ static void test_conservative_pull_closes(void)
             weight += pull[4 * i + 3];
         }
         const double phi = atan2(sqrt(0.4 * 0.4 - 0.225 * 0.225), 0.225); /* contact points x = 0.225 m */
-        const double expected = 2.0 * c.materials[0].surface_tension * sin(c.materials[0].contact_angle * PI / 180.0 + phi);
+        const double theta0 = c.materials[0].contact_angle * PI / 180.0;
+        const double expected = 2.0 * c.materials[0].surface_tension * sin(theta0 + phi);
         printf("wet_conservative: the pulls sum to (%.3g, %.3g) N/m, the grain's sum of sizes %.4g N/m; "
                "the grain is pulled with (%.4g, %.3g) N/m, its contact lines at theta0 %.4g\n",
                net[0], net[1], weight, grain[0], grain[1], expected);
@@ -938,8 +939,8 @@ static void test_bridge(void)
  * liquid's cross-section A = N dx^3 / 0.8 m; within 10% (measured 0.944
  * in both forms, as the 2D bridge's 18.9 of 20 N/m at its start). Its
  * later force (the Laplace pressure sigma / r against it, pi r sigma at
- * rest) is not checked: the 3D cylinder's pressure comes out 28% short
- * (BENCHMARKS.md). */
+ * rest) is not checked: the liquid's pressure settles 28% below sigma / r
+ * while the cylinder narrows in its middle (BENCHMARKS.md). */
 static void test_bridge_3d(void)
 {
     static const struct {
