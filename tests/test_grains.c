@@ -939,8 +939,9 @@ static void test_bridge(void)
  * liquid's cross-section A = N dx^3 / 0.8 m; within 10% (measured 0.944
  * in both forms, as the 2D bridge's 18.9 of 20 N/m at its start). Its
  * later force (the Laplace pressure sigma / r against it, pi r sigma at
- * rest) is not checked: the liquid's pressure settles 28% below sigma / r
- * while the cylinder narrows in its middle (BENCHMARKS.md). */
+ * rest) is not checked: the contact line spreads and the cylinder necks,
+ * as a bridge wetting at less than 90 degrees, and its pressure settles
+ * 28% below sigma / r (BENCHMARKS.md). */
 static void test_bridge_3d(void)
 {
     static const struct {
