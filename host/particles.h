@@ -44,6 +44,9 @@ typedef enum { AMSPH_TYPE_REAL, AMSPH_TYPE_INT, AMSPH_TYPE_UINT } amsph_field_ty
     X(NORMAL, "normal", AMSPH_TYPE_REAL, 3, "1/m", AMSPH_FIELD_OUTPUT)                             \
     X(UNIT_NORMAL, "unit_normal", AMSPH_TYPE_REAL, 3, "1", 0)                                      \
     X(NORMAL_WEIGHT, "normal_weight", AMSPH_TYPE_REAL, 1, "1", 0)                                  \
+    X(WET_FRACTION, "wet_fraction", AMSPH_TYPE_REAL, 2, "1", 0)                                    \
+    X(WET_COLOUR, "wet_colour", AMSPH_TYPE_REAL, 1, "1", 0)                                        \
+    X(WET_NORMAL, "wet_normal", AMSPH_TYPE_REAL, 3, "1/m", 0)                                      \
     X(RAW_CURVATURE, "raw_curvature", AMSPH_TYPE_REAL, 1, "1/m", 0)                                \
     X(CURVATURE, "curvature", AMSPH_TYPE_REAL, 1, "1/m", AMSPH_FIELD_OUTPUT)                       \
     X(SURFACE_TENSION, "surface_tension", AMSPH_TYPE_REAL, 1, "N/m", AMSPH_FIELD_OUTPUT)            \

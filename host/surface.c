@@ -14,6 +14,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
                                             AMSPH_FIELD_UNIT_NORMAL, AMSPH_FIELD_NORMAL_WEIGHT,
                                             AMSPH_FIELD_RAW_CURVATURE, AMSPH_FIELD_CURVATURE,
                                             AMSPH_FIELD_SURFACE_TENSION};
+    static const amsph_field_id wetting_fields[] = {AMSPH_FIELD_WET_FRACTION, AMSPH_FIELD_WET_COLOUR,
+                                                    AMSPH_FIELD_WET_NORMAL};
     const amsph_surface_settings *st = &s->config.surface;
     surface_params *p = &s->surface;
     memset(p, 0, sizeof *p);
@@ -42,6 +44,8 @@ int amsph_surface_setup(amsph_sim *s, amsph_host_particles *h)
     p->temperature |= p->wetting && h->data[AMSPH_FIELD_TEMPERATURE] != NULL;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
         AMSPH_CHECK(amsph_host_add_field(h, fields[k]));
+    for (size_t k = 0; k < sizeof wetting_fields / sizeof wetting_fields[0] && p->wetting; ++k)
+        AMSPH_CHECK(amsph_host_add_field(h, wetting_fields[k]));
     return 0;
 }
 
@@ -171,6 +175,13 @@ static int find_liquid_blocks(amsph_sim *s, amsph_arg grid, amsph_arg params, am
     return 0;
 }
 
+/* A wetting field's buffer; the work buffer, which the kernels do not
+ * touch then, where no material has a contact angle. */
+static amsph_arg wetting_field(amsph_sim *s, amsph_field_id f)
+{
+    return s->surface.wetting ? field(s, f) : amsph_arg_buffer(s->work);
+}
+
 int amsph_surface_forces(amsph_sim *s)
 {
     amsph_backend *b = s->backend;
@@ -187,18 +198,24 @@ int amsph_surface_forces(amsph_sim *s)
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_shepard", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start,
-                             amsph_arg_buffer(s->grid.fluid_count), materials, away, plain, params,
-                             field(s, AMSPH_FIELD_SURFACE_SHEPARD)));
+                             amsph_arg_buffer(s->grid.fluid_count), field(s, AMSPH_FIELD_KIND), materials, away,
+                             plain, params, field(s, AMSPH_FIELD_SURFACE_SHEPARD),
+                             wetting_field(s, AMSPH_FIELD_WET_FRACTION)));
+    if (s->surface.wetting) /* the solids' wet colour (kernels/surface.cl) */
+        AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_wet_colour", n, field(s, AMSPH_FIELD_POSITION),
+                                 field(s, AMSPH_FIELD_KIND), cells, amsph_arg_int(n), grid, cell_start, params,
+                                 field(s, AMSPH_FIELD_WET_FRACTION), field(s, AMSPH_FIELD_WET_COLOUR)));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_normal", n, field(s, AMSPH_FIELD_POSITION),
                              field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                              field(s, AMSPH_FIELD_SURFACE_SHEPARD), field(s, AMSPH_FIELD_KIND),
                              field(s, AMSPH_FIELD_MATERIAL), cells, amsph_arg_int(n), grid, cell_start, materials,
-                             away, plain, params, field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
-                             field(s, AMSPH_FIELD_NORMAL_WEIGHT)));
+                             away, plain, wetting_field(s, AMSPH_FIELD_WET_COLOUR), params,
+                             field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_UNIT_NORMAL),
+                             field(s, AMSPH_FIELD_NORMAL_WEIGHT), wetting_field(s, AMSPH_FIELD_WET_NORMAL)));
     if (s->surface.wetting)
         AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_wetting", n, field(s, AMSPH_FIELD_POSITION),
                                  field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
-                                 field(s, AMSPH_FIELD_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
+                                 field(s, AMSPH_FIELD_WET_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
                                  field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL),
                                  temperature(s), amsph_arg_buffer(s->materials), cells,
                                  amsph_arg_int(n), grid, cell_start, params,

@@ -447,16 +447,18 @@ static inline int fluid_within_support(const grid_geometry *g, GLOBAL const int 
 /* Gamma_a = sum_b V_b W_ab at h_st, over every particle of colour 1, where
  * a normal reads it: within shepard_blocks of the liquid and, where only
  * the liquid takes a normal (*plain = 0), with a liquid within a's support;
- * 0 elsewhere. */
+ * 0 elsewhere. With wetting, a solid's f and L of surface_wet_colour from
+ * the same sum (0 on the fluid and where it is not taken). */
 KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *density,
                             GLOBAL const real *mass, GLOBAL const int *material, GLOBAL const int *cell,
                             int n, grid_geometry g, GLOBAL const int *cell_start, GLOBAL const int *fluid_count,
-                            GLOBAL const real *materials, GLOBAL const int *blocks_away, GLOBAL const int *plain,
-                            surface_params p, GLOBAL real *shepard)
+                            GLOBAL const int *kind, GLOBAL const real *materials, GLOBAL const int *blocks_away,
+                            GLOBAL const int *plain, surface_params p, GLOBAL real *shepard,
+                            GLOBAL real *wet_fraction)
 {
     FOR_EACH_ITEM(a, n)
     {
-        real sum = REAL(0.0);
+        real sum = REAL(0.0), liquid = REAL(0.0);
         if (blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= shepard_blocks(&p, plain) &&
             (*plain > 0 || fluid_within_support(&g, cell_start, fluid_count, &p, cell[a]))) {
             int cc[3];
@@ -466,11 +468,70 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
             {
                 real r_ab[3], r2;
                 if (colour_material(materials, material, b) &&
-                    grid_pair_within(&run, position, b, support2, r_ab, &r2))
-                    sum += smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
+                    grid_pair_within(&run, position, b, support2, r_ab, &r2)) {
+                    const real w = smoothing_w(sqrt(r2), p.h) * mass[b] / density[b];
+                    sum += w;
+                    liquid += kind[b] == KIND_FLUID ? w : REAL(0.0);
+                }
             }
         }
         shepard[a] = sum;
+        if (p.wetting) {
+            const int solid = kind[a] != KIND_FLUID && liquid > REAL(0.0);
+            wet_fraction[2 * a] = solid ? liquid / fmax(REAL(1.0) - (sum - liquid), liquid) : REAL(0.0);
+            wet_fraction[2 * a + 1] = solid ? liquid : REAL(0.0);
+        }
+    }
+}
+
+/* The wet colour of the solids, with which they enter the liquid-gas
+ * normal of the wetting model (the wet normal of surface_normal, read by
+ * surface_wetting for n_lg in Fuchs et al. 2022 Eqs. 28-29): 1 where the
+ * liquid covers the solid's face, 0 on its dry face. With colour 1 on
+ * every solid, the dry face above a contact line is part of the liquid's
+ * body to the normals of the rows above those that Eq. 29 turns fully;
+ * they lean towards the wall, and a 2D liquid bridge at 90 degrees
+ * (test_grains bridge) bulged from about 2.5 s (6 s: 0.524 m high at the
+ * plates, 0.630 m in the middle, +11.9 Pa where a flat bridge has 0; with
+ * the wet colour 0.583 and 0.568 m, +0.88 Pa). Only that normal takes it:
+ * with the dry face at 0 in the colour gradient that carries the CSF
+ * force, a drop at 120 degrees climbed off its wall (BENCHMARKS.md).
+ * Each solid r that takes a Shepard sum takes, in surface_shepard,
+ *   L_r = sum_b V_b W_rb over the liquid b,  S_r = sum_b V_b W_rb over the solids b,
+ *   f_r = L_r / max(1 - S_r, L_r):
+ * the liquid's share of the space around r that the solids leave open
+ * (1 - S_r; the sum of V W over a full support is 1). f is the wet colour
+ * on the solid's face; deeper in a solid thinner than two supports,
+ * 1 - S_r also holds the empty space behind it (f = 0.07 on the third row
+ * of a plate four rows thick, under the liquid). surface_wet_colour
+ * carries the face's value into the solid as the mean
+ *   c_r = sum_b W_rb L_b^3 f_b / sum_b W_rb L_b^3
+ * over the solids b (b = r too), in which the face's rows, with the
+ * largest L, outweigh the rest; 1 on the fluid, which surface_normal does
+ * not read. */
+KERNEL void surface_wet_colour(GLOBAL const real *position, GLOBAL const int *kind, GLOBAL const int *cell,
+                               int n, grid_geometry g, GLOBAL const int *cell_start, surface_params p,
+                               GLOBAL const real *wet_fraction, GLOBAL real *wet_colour)
+{
+    FOR_EACH_ITEM(a, n)
+    {
+        real sum = REAL(0.0), weight = REAL(0.0);
+        if (kind[a] != KIND_FLUID && wet_fraction[2 * a + 1] > REAL(0.0)) {
+            int cc[3];
+            real x_a[3];
+            const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
+            FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
+            {
+                real r_ab[3], r2;
+                if (kind[b] == KIND_FLUID || !grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue;
+                const real liquid_b = wet_fraction[2 * b + 1];
+                const real w = smoothing_w(sqrt(r2), p.h) * liquid_b * liquid_b * liquid_b;
+                sum += w * wet_fraction[2 * b];
+                weight += w;
+            }
+        }
+        wet_colour[a] = kind[a] == KIND_FLUID ? REAL(1.0) : weight > REAL(0.0) ? sum / weight : REAL(0.0);
     }
 }
 
@@ -491,18 +552,22 @@ KERNEL void surface_shepard(GLOBAL const real *position, GLOBAL const real *dens
  *    of the material (the 1/Gamma_b of the surface particles outweighs the
  *    missing outer neighbours); on a circle cut from a square lattice those
  *    normals passed the cut-off at the steps and made the mean curvature
- *    2.6 times too large. They are not surface normals. */
+ *    2.6 times too large. They are not surface normals.
+ * With wetting, every liquid particle also gets its wet normal: the same
+ * sum with c_b the wet colour of surface_wet_colour on the solids, which
+ * surface_wetting reads. */
 KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *density,
                            GLOBAL const real *mass, GLOBAL const real *shepard, GLOBAL const int *kind,
                            GLOBAL const int *material, GLOBAL const int *cell, int n, grid_geometry g,
                            GLOBAL const int *cell_start, GLOBAL const real *materials,
-                           GLOBAL const int *blocks_away, GLOBAL const int *plain, surface_params p,
-                           GLOBAL real *normal,
-                           GLOBAL real *unit_normal, GLOBAL real *normal_weight)
+                           GLOBAL const int *blocks_away, GLOBAL const int *plain,
+                           GLOBAL const real *wet_colour, surface_params p, GLOBAL real *normal,
+                           GLOBAL real *unit_normal, GLOBAL real *normal_weight, GLOBAL real *wet_normal)
 {
     FOR_EACH_ITEM(a, n)
     {
-        real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        real sum[3] = {REAL(0.0), REAL(0.0), REAL(0.0)}, wet[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
+        const int wets = p.wetting && kind[a] == KIND_FLUID;
         real grad_gamma[3] = {REAL(0.0), REAL(0.0), REAL(0.0)};
         /* no normal on gas, nor far from the liquid (n_a = 0, psi_a = 0) */
         const int has_normal = takes_normal(kind, material, materials, blocks_away, plain, &g, &p, cell, a);
@@ -520,8 +585,10 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
                 const real f = smoothing_grad_factor(sqrt(r2), p.h); /* grad_a W_ab = f r_ab */
                 const real v_b = mass[b] / density[b];
                 const real weight = v_b * (inv_gamma_a + REAL(1.0) / shepard[b]) * f;
+                const real c_b = wets && kind[b] != KIND_FLUID ? wet_colour[b] : REAL(1.0);
                 for (int d = 0; d < 3; ++d) {
                     sum[d] += weight * r_ab[d];
+                    wet[d] += c_b * weight * r_ab[d];
                     grad_gamma[d] += v_b * f * r_ab[d];
                 }
             }
@@ -531,6 +598,9 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
         const real psi = inward ? fmin(fmax(size * p.h / p.normal_cutoff - REAL(1.0), REAL(0.0)), REAL(1.0))
                                 : REAL(0.0);
         normal_weight[a] = psi;
+        if (p.wetting)
+            for (int d = 0; d < 3; ++d)
+                wet_normal[3 * a + d] = wets ? wet[d] : REAL(0.0);
         for (int d = 0; d < 3; ++d) {
             normal[3 * a + d] = sum[d];
             unit_normal[3 * a + d] = psi > REAL(0.0) ? sum[d] / size : REAL(0.0);
@@ -543,10 +613,13 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
  *   c_sf = (1/V_a) sum_b chi_b (V_a^2 + V_b^2) rho_a / (rho_a + rho_b) W_ab
  * over the solids and walls b (Eq. 19 with chi_b = solid_colour; grad c_sf
  * with grad_a W_ab in place of W_ab), and
- *   g_a = -sum_b V_b W_ab n_b
+ *   g_a = -sum_b V_b W_ab n^wet_b
  * over the liquid b (b = a too): the outward colour gradients around a,
  * smoothed, which stand for the liquid-gas normal n_lg in the tangent t_sf
- * (Eq. 28) and the blend (Eq. 29). Fuchs takes the particle's own normal;
+ * (Eq. 28) and the blend (Eq. 29); n^wet_b is the wet normal of
+ * surface_normal, whose solids count with their wet colour
+ * (surface_wet_colour), as a solid's dry face is no part of the liquid's
+ * body. Fuchs takes the particle's own normal;
  * on a wetted base within a support of the contact line that normal is
  * short and points mostly away from the wall, so the sign of its part along
  * the wall is noise and neighbours got opposite tangents (capped curvature,
@@ -557,7 +630,7 @@ KERNEL void surface_normal(GLOBAL const real *position, GLOBAL const real *densi
  * that carries the CSF force (Fuchs Eq. 24: grad c, not the corrected
  * normal), stays. */
 KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *density,
-                            GLOBAL const real *mass, GLOBAL const real *normal,
+                            GLOBAL const real *mass, GLOBAL const real *wet_normal,
                             GLOBAL const real *normal_weight, GLOBAL const int *kind,
                             GLOBAL const int *material, GLOBAL const real *temperature,
                             GLOBAL const real *materials, GLOBAL const int *cell, int n,
@@ -582,7 +655,7 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
                 const real r = sqrt(r2), v_b = mass[b] / density[b];
                 if (kind[b] == KIND_FLUID) {
                     for (int d = 0; d < 3; ++d)
-                        outward[d] -= v_b * smoothing_w(r, p.h) * normal[3 * b + d];
+                        outward[d] -= v_b * smoothing_w(r, p.h) * wet_normal[3 * b + d];
                     continue;
                 }
                 const real t_b = p.temperature ? temperature[b] : REAL(0.0);

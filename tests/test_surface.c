@@ -566,11 +566,11 @@ static void check_sessile_cap(const char *file, double theta0, double dx, double
 /* The half disc of sessile_cap_2d.yaml (radius 0.85 m on a free-slip wall,
  * a 90-degree contact angle as built) relaxes to a cap at the contact angle
  * theta0 = 60 and 120 degrees and comes to rest there by 40 s (issue 10,
- * item 5; measured 58.8 and 115.3 degrees, fastest 0.11% and 0.17% of the
+ * item 5; measured 58.9 and 116.5 degrees, fastest 0.45% and 0.38% of the
  * capillary speed). The interface viscosity keeps the momentum, so the
  * 60-degree cap overshoots to 54 degrees at 12 s and is still moving at 20 s
  * (2.6%; BENCHMARKS.md). The half sphere of sessile_cap_3d.yaml at 60
- * degrees, at dx = 0.1 m (radius 8.5 dx) to 20 s (measured 62.8 degrees; at
+ * degrees, at dx = 0.1 m (radius 8.5 dx) to 20 s (measured 62.1 degrees; at
  * 120 degrees this spacing stops near 102: the curvature cap holds the rows
  * at the contact line, and the case's 12 dx is needed, BENCHMARKS.md). */
 static void test_sessile_cap(void)
