@@ -1092,7 +1092,7 @@ KERNEL void surface_pull_component(GLOBAL const real *pull, int n, int c, GLOBAL
  * stress flux F_r (surface_contact_pull) are two discretisations of the
  * same pull and agree to the discretisation error only: on the drop
  * beside a grain of test_grains wet the flux is 19.8 N/m at the start, the
- * CSF force's net 21.9, and the contact lines at theta0 pull with 18.0
+ * CSF force's net 21.6, and the contact lines at theta0 pull with 18.0
  * (before the solid took the liquid's stress, solid_pair_weight, the flux
  * came to 0.3 to 0.4 of the CSF force's net there and on a sessile half
  * disc). c hands the
