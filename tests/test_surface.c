@@ -529,10 +529,6 @@ static void test_sessile_droplet(void)
     }
 }
 
-/* A sessile cap of `file` at contact angle theta0, run to end_time (s; 0:
- * the case's) at spacing dx (0: the case's), comes to rest at theta0: its
- * contact angle within 5 degrees, no particle faster than 2% of the capillary
- * speed sigma / mu (0.25 m/s). */
 /* Moves the faces of the case's boxes to the nearest multiples of its dx, so
  * that at a spacing other than the case's a wall's top layer still lies dx/2
  * below its face, as the centred lattice of the drop's lowest layer lies
@@ -548,6 +544,10 @@ static void boxes_on_lattice(amsph_case *c)
             }
 }
 
+/* A sessile cap of `file` at contact angle theta0, run to end_time (s; 0:
+ * the case's) at spacing dx (0: the case's), comes to rest at theta0: its
+ * contact angle within 5 degrees, no particle faster than 2% of the capillary
+ * speed sigma / mu (0.25 m/s). */
 static void check_sessile_cap(const char *file, double theta0, double dx, double end_time)
 {
     amsph_case c;
