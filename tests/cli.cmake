@@ -58,6 +58,12 @@ string(REPLACE "SECOND" ", fill: true" text "${overlap}")
 file(WRITE ${WORK}/overlap_fill.yaml "${text}")
 expect_status(0 ${AMSPH} check ${WORK}/overlap_fill.yaml)
 expect_text("2 geometry blocks, 112 particles)") # 8 x 8 each, less the 4 x 4 shared
+# A `fill` block on a lattice offset from the one before it (0.4 dx here)
+# would skip a whole layer along their common face: bad input.
+string(REPLACE "[0.3, 0.3], max: [0.7, 0.7]SECOND" "[0.32, 0.3], max: [0.72, 0.7], fill: true" text "${overlap}")
+file(WRITE ${WORK}/offset_fill.yaml "${text}")
+expect_status(2 ${AMSPH} check ${WORK}/offset_fill.yaml)
+expect_text("offset_fill.yaml:10: this fill block's lattice is offset from that of a block before it: its point (0.345, 0.325, 0) m lies 0.40 dx from a particle there, so the fill would leave a gap of up to 1.40 dx along their common faces; move this block by (-0.02, 0, 0) m")
 string(REPLACE "0.7, 0.7]SECOND" "0.32, 0.32]" text "${overlap}")
 file(WRITE ${WORK}/empty_block.yaml "${text}")
 expect_status(2 ${AMSPH} check ${WORK}/empty_block.yaml)
