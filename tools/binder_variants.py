@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Writes cases/am/binder_jetting_{1,10,50}ms_{2,3}d.yaml, the binder-jetting
 scene of Fuchs et al. 2022 Sec. 4.2 at the droplet speeds, and
-binder_jetting_{1,10,50}ms_gas_2d.yaml and binder_jetting_10ms_gas_3d.yaml
-with the gas phase, from one template (the
+binder_jetting_{1,10,50}ms_gas_{2,3}d.yaml with the gas phase, from one
+template (the
 settings that follow from the speed, the dimension and the gas are worked
 out here)."""
 import math
@@ -100,11 +100,11 @@ RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.
        (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
 # with the gas phase (the gas's barrier makes the steps six to ten times
 # shorter than without it): at 1 m/s the whole 0.1 ms, at 10 m/s the impact
-# and the spreading, 0.04 ms, at 50 m/s the splash, 10 us; in 3D at 10 m/s to
-# the end of the case without the gas, 0.05 ms (about 51000 steps of 414176
-# particles: a GPU's run; 1.7 steps/s on 2 cores)
+# and the spreading, 0.04 ms, at 50 m/s the splash, 10 us; in 3D to the end
+# of the cases without the gas (0.1 ms, 0.05 ms and 10 us: GPU runs, 1.7
+# steps/s on 2 cores)
 GAS_RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (4.0e-5, 2.0e-6), (2, 50): (1.0e-5, 5.0e-7),
-           (3, 10): (5.0e-5, 2.5e-6)}
+           (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
 
 # what a case's header adds about its own run
 NOTES = {(3, 50): ("\n# At dx = 4 um this droplet does not splash as Fuchs's does (without the"
@@ -161,6 +161,12 @@ GAS_RESULTS = {
               "\n# (4072 steps): the droplet slows and spreads as without the gas (at 4 us its"
               "\n# kinetic energy within 0.2%, its lowest point 2 um higher, its wetted"
               "\n# width 3.5 um narrower; docs/RESULTS.md)."),
+    (3, 1): ("\n# In 3D at 1 m/s: 9.8e-10 s (the barrier), 0.1 ms in about 102000 steps of"
+             "\n# 414176 particles, a GPU's run (1.4 steps/s on 2 cores, 20 h); its first"
+             "\n# 100 steps ran on 2 cores."),
+    (3, 50): ("\n# In 3D at 50 m/s: 2.2e-10 s (the barrier), 10 us in about 45500 steps of"
+              "\n# 414176 particles, a GPU's run (1.4 steps/s on 2 cores, 9 h); its first"
+              "\n# 100 steps ran on 2 cores."),
 }
 
 
