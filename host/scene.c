@@ -153,7 +153,7 @@ static void set_particle(const amsph_case *c, const amsph_geometry *g, const dou
 /* A point a `fill` block leaves out must lie within this many dx of the
  * particle it makes way for: a lattice offset by a fraction f < 0.75 of a
  * spacing from the one before it skips a whole layer along a flat face and
- * leaves a gap of (1 + f) dx there (the 3D sessile cap's wall, 0.29 dx
+ * leaves a gap of (1 + f) dx there (the 3D sessile cap's wall, 0.71 dx
  * off, started its liquid 1.7 dx above the wall and 12% short). */
 #define FILL_LATTICE_MISMATCH 0.1
 
