@@ -523,9 +523,9 @@ KERNEL void surface_wet_colour(GLOBAL const real *position, GLOBAL const int *ki
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 real r_ab[3], r2;
-                if (kind[b] == KIND_FLUID || !grid_pair_within(&run, position, b, support2, r_ab, &r2))
-                    continue;
-                const real liquid_b = wet_fraction[2 * b + 1];
+                const real liquid_b = kind[b] == KIND_FLUID ? REAL(0.0) : wet_fraction[2 * b + 1];
+                if (liquid_b <= REAL(0.0) || !grid_pair_within(&run, position, b, support2, r_ab, &r2))
+                    continue; /* the fluid, and solids out of the liquid's reach (L_b = 0) */
                 const real w = smoothing_w(sqrt(r2), p.h) * liquid_b * liquid_b * liquid_b;
                 sum += w * wet_fraction[2 * b];
                 weight += w;
