@@ -314,31 +314,28 @@ static int overlap_error(const amsph_case *c, const amsph_geometry *g, const dou
                            c->path, g->line, x[0], x[1], x[2], OVERLAP_CLEARANCE);
 }
 
-/* Does y lie within `tolerance` dx of x? */
-static int on_point(const amsph_case *c, const double x[3], const amsph_real y[3], double tolerance)
+/* The shift y - x that takes lattice point x onto particle y, to a
+ * thousandth of dx (clear of y's rounding); returns its length in dx. */
+static double shift_onto(const amsph_case *c, const double x[3], const amsph_real y[3], double shift[3])
 {
     double r2 = 0.0;
-    for (int d = 0; d < c->dim; ++d)
-        r2 += (y[d] - x[d]) * (y[d] - x[d]);
-    return r2 < tolerance * tolerance * c->dx * c->dx;
-}
-
-/* A `fill` block's lattice point x that a particle y placed before it
- * makes way for without lying on it. */
-static int fill_offset_error(const amsph_case *c, const amsph_geometry *g, const double x[3],
-                             const amsph_real y[3])
-{
-    double shift[3] = {0}, r2 = 0.0; /* shift: to a thousandth of dx, clear of y's rounding */
-    for (int d = 0; d < c->dim; ++d) {
-        shift[d] = round((y[d] - x[d]) / c->dx * 1e3) * 1e-3 * c->dx + 0.0;
+    for (int d = 0; d < 3; ++d) {
+        shift[d] = d < c->dim ? round((y[d] - x[d]) / c->dx * 1e3) * 1e-3 * c->dx + 0.0 : 0.0;
         r2 += shift[d] * shift[d];
     }
+    return sqrt(r2) / c->dx;
+}
+
+/* A `fill` block's lattice point x that a particle placed before it makes
+ * way for without lying on it: `shift` (offset dx long) away. */
+static int fill_offset_error(const amsph_case *c, const amsph_geometry *g, const double x[3],
+                             const double shift[3], double offset)
+{
     return amsph_bad_input("%s:%d: this fill block's lattice is offset from that of a block before it: "
                            "its point (%g, %g, %g) m lies %.2f dx from a particle there, so the fill "
                            "would leave a gap of up to %.2f dx along their common faces; move this block "
                            "by (%.3g, %.3g, %.3g) m (or the other the opposite way) so the lattices coincide",
-                           c->path, g->line, x[0], x[1], x[2], sqrt(r2) / c->dx, 1.0 + sqrt(r2) / c->dx,
-                           shift[0], shift[1], shift[2]);
+                           c->path, g->line, x[0], x[1], x[2], offset, 1.0 + offset, shift[0], shift[1], shift[2]);
 }
 
 /* Visits the lattice points of block g (a `fill` block: those away from the
@@ -369,8 +366,10 @@ static int visit_block(const amsph_case *c, const amsph_geometry *g, const amsph
         if (taken >= 0) {
             if (!g->fill)
                 return overlap_error(c, g, x);
-            if (!on_point(c, x, before->x + 3 * taken, FILL_LATTICE_MISMATCH))
-                return fill_offset_error(c, g, x, before->x + 3 * taken);
+            double shift[3];
+            const double offset = shift_onto(c, x, before->x + 3 * taken, shift);
+            if (offset > FILL_LATTICE_MISMATCH)
+                return fill_offset_error(c, g, x, shift, offset);
             continue;
         }
         AMSPH_CHECK(check_inside_domain(c, g, x));

@@ -101,8 +101,8 @@ RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (1.0e-4, 2.0e-6), (2, 50): (1.0e-4, 2.
 # with the gas phase (the gas's barrier makes the steps six to ten times
 # shorter than without it): at 1 m/s the whole 0.1 ms, at 10 m/s the impact
 # and the spreading, 0.04 ms, at 50 m/s the splash, 10 us; in 3D to the end
-# of the cases without the gas (0.1 ms, 0.05 ms and 10 us: GPU runs, 1.7
-# steps/s on 2 cores)
+# of the cases without the gas (0.1 ms, 0.05 ms and 10 us: GPU runs, 1.4 to
+# 1.7 steps/s on 2 cores)
 GAS_RUN = {(2, 1): (1.0e-4, 2.0e-6), (2, 10): (4.0e-5, 2.0e-6), (2, 50): (1.0e-5, 5.0e-7),
            (3, 1): (1.0e-4, 2.5e-6), (3, 10): (5.0e-5, 2.5e-6), (3, 50): (1.0e-5, 5.0e-7)}
 
