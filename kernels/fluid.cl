@@ -29,16 +29,6 @@ KERNEL void update_reference_density(GLOBAL const int *material, GLOBAL const re
     }
 }
 
-/* The d-th root of x, d the dimension. */
-static inline real dimension_root(real x)
-{
-#if AMSPH_DIM == 2
-    return sqrt(x);
-#else
-    return cbrt(x);
-#endif
-}
-
 /* Smoothing length that follows the particle volume (Russell 2018 Eq. 3.54),
  * with SMOOTHING_VOLUME, after the density advanced:
  *   h_a = h0 (V_a / V0)^(1/d),  V_a = m_a / rho_a,  V0 = dx^d

@@ -28,7 +28,8 @@
  *   surface_normal     n_a (Eq. 3.26)
  *   surface_wetting    n^_a turned to the contact angle (Fuchs Eqs. 27-29; only
  *                      with p.wetting)
- *   surface_curvature  kappa_a of the particles with a normal (Eqs. 3.27-3.29, cap)
+ *   surface_curvature  kappa_a of the particles with a normal (Eqs. 3.27, 3.28,
+ *                      taken to the surface; cap)
  *   surface_force      smoothed kappa (Eq. 3.30), the CSF force (Eq. 3.31) and
  *                      the Marangoni force (Eq. 3.35) on fluid particles; in
  *                      the conservative form also the capillary stress's
@@ -680,14 +681,49 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
     }
 }
 
+/* The curvature of the surface above a particle, from the curvature kappa
+ * of the level set it lies on and its depth delta below the surface. The
+ * particles of a surface band lie on level sets parallel to the surface;
+ * below a sphere of radius R (a circle in 2D) the one at depth delta has
+ * radius R - delta, so that with kappa = -(d - 1)/(R - delta)
+ *   kappa_s = kappa / (1 - delta kappa / (d - 1))
+ * (the mean curvature of a parallel surface; do Carmo 1976, Differential
+ * Geometry of Curves and Surfaces, Sec. 3-5). Exact where the principal
+ * curvatures are equal; on a 3D cylinder it takes out half the level set's
+ * excess. Without it the band's rows 1 to 3 dx inside read their level
+ * set's (d - 1)/(R - delta), and a droplet's Laplace pressure followed them
+ * (+7.5% at R = 10 dx in 3D; BENCHMARKS.md, "The curvature at the
+ * surface"). A concave
+ * surface (kappa > 0) is at most doubled (delta kappa / (d - 1) <= 1/2),
+ * where the level set's centre would come within delta of the particle. */
+static inline real curvature_at_surface(real kappa, real depth)
+{
+    return kappa / (REAL(1.0) - fmin(depth * kappa / (real)(AMSPH_DIM - 1), REAL(0.5)));
+}
+
 /* Curvature of the particles with a normal (psi_a > 0), over the neighbours
- * with one (Russell 2018 Eqs. 3.28, 3.29; Morris 2000 sums over those only):
- *   Gamma*_a = sum_b psi_b V_b W_ab,
- *   kappa_a  = (1/Gamma*_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
- * capped at |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4), within
- * near_blocks - 2 blocks of the liquid (blocks_from_liquid); 0 elsewhere.
- * With the inward normal, a convex surface has kappa < 0 (a circle: -1/R).
- * A liquid with a contact angle sums over liquid b only (shapes_curvature). */
+ * with one (Russell 2018 Eq. 3.28; Morris 2000 sums over those only):
+ *   kappa_a = ((d - 1)/M_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
+ *   M_a     = -sum_b psi_b V_b F_ab (|r_ab|^2 - (r_ab . n^_a)^2),
+ * grad_a W_ab = F_ab r_ab. For a normal field linear in x the sum reads
+ * sum_ij (d n^_i / d x_j) M_ij with M_ij = -sum_b psi_b V_b F_ab r_i r_j, and
+ * a level set's unit normal varies along the surface only, so the tangential
+ * trace M_a of that moment, over d - 1, is the normalisation that reads the
+ * divergence. On a full support M_a / (d - 1) = 1 and Russell's Gamma*_a =
+ * sum_b psi_b V_b W_ab (Eq. 3.29) = 1 too; on the band of particles with a
+ * normal, and where a wall cuts the band (the rows at a contact line), only
+ * M_a stays consistent (with Gamma* the rows at the wall of a 3D cap read
+ * 1.00 to 1.06 of 2/R where its body read 1.08 to 1.14).
+ * The level set's curvature is then taken to the surface
+ * (curvature_at_surface) with the particle's depth below it,
+ *   delta_a = max(0, max_b r_ab . n^_a) + V_a^(1/d) / 2,
+ * the height of its outermost neighbour along the outward normal -n^_a, and
+ * half a spacing from the outer row's centres to the surface. Capped at
+ * |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4), within near_blocks - 2
+ * blocks of the liquid (blocks_from_liquid); 0 elsewhere and where M_a = 0
+ * (no neighbour along the surface). With the inward normal, a convex surface
+ * has kappa < 0 (a circle: -1/R). A liquid with a contact angle sums over
+ * liquid b only (shapes_curvature). */
 KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *density,
                               GLOBAL const real *mass, GLOBAL const real *unit_normal,
                               GLOBAL const real *normal_weight, GLOBAL const int *kind,
@@ -702,9 +738,11 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
         const real theta0 = contact_angle(kind, material, materials, &p, a);
         if (normal_weight[a] > REAL(0.0) && blocks_from_liquid(blocks_away, &g, &p, cell[a]) <= p.near_blocks - 2) {
             int cc[3];
-            real x_a[3];
+            real x_a[3], n_a[3];
             const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
-            real gamma_star = REAL(0.0), divergence = REAL(0.0);
+            real divergence = REAL(0.0), moment = REAL(0.0), rise = REAL(0.0);
+            for (int d = 0; d < 3; ++d)
+                n_a[d] = unit_normal[3 * a + d];
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
             {
                 if (normal_weight[b] <= REAL(0.0) || !shapes_curvature(theta0, kind[b]))
@@ -712,15 +750,21 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
                 real r_ab[3], r2;
                 if (!grid_pair_within(&run, position, b, support2, r_ab, &r2))
                     continue;
-                const real r = sqrt(r2);
                 const real v_b = normal_weight[b] * mass[b] / density[b];
+                const real f = v_b * smoothing_grad_factor(sqrt(r2), p.h);
+                const real across = dot3(r_ab, n_a);
                 real n_ba[3];
                 for (int d = 0; d < 3; ++d)
-                    n_ba[d] = unit_normal[3 * b + d] - unit_normal[3 * a + d];
-                gamma_star += v_b * smoothing_w(r, p.h);
-                divergence += v_b * smoothing_grad_factor(r, p.h) * dot3(n_ba, r_ab);
+                    n_ba[d] = unit_normal[3 * b + d] - n_a[d];
+                divergence += f * dot3(n_ba, r_ab);
+                moment -= f * (r2 - across * across);
+                rise = fmax(rise, across);
             }
-            kappa = fmin(fmax(divergence / gamma_star, -p.max_curvature), p.max_curvature);
+            if (moment > REAL(0.0)) {
+                const real depth = rise + REAL(0.5) * dimension_root(mass[a] / density[a]);
+                kappa = curvature_at_surface((real)(AMSPH_DIM - 1) * divergence / moment, depth);
+                kappa = fmin(fmax(kappa, -p.max_curvature), p.max_curvature);
+            }
         }
         curvature[a] = kappa;
     }

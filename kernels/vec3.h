@@ -18,4 +18,14 @@ static inline void cross3(const real a[3], const real b[3], real out[3])
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* The d-th root of x, d the dimension (of a volume: the particle spacing). */
+static inline real dimension_root(real x)
+{
+#if AMSPH_DIM == 2
+    return sqrt(x);
+#else
+    return cbrt(x);
+#endif
+}
+
 #endif
