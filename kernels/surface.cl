@@ -695,30 +695,43 @@ KERNEL void surface_wetting(GLOBAL const real *position, GLOBAL const real *dens
  * (+7.5% at R = 10 dx in 3D; BENCHMARKS.md, "The curvature at the
  * surface"). A concave surface (kappa > 0) is at most doubled (delta kappa
  * / (d - 1) <= 1/2), where the level set's centre would come within delta
- * of the particle; a bubble of R = 10 dx reads 1.09 of 2/R (0.87 before). */
+ * of the particle; the liquid around a bubble of R = 10 dx reads 0.94 of
+ * 2/R (0.87 uncorrected). */
 static inline real curvature_at_surface(real kappa, real depth)
 {
     return kappa / (REAL(1.0) - fmin(depth * kappa / (real)(AMSPH_DIM - 1), REAL(0.5)));
 }
 
 /* Curvature of the particles with a normal (psi_a > 0), over the neighbours
- * with one (Russell 2018 Eq. 3.28; Morris 2000 sums over those only):
- *   kappa_a = ((d - 1)/M_a) sum_b psi_b V_b (n^_b - n^_a) . grad_a W_ab,
- *   M_a     = -sum_b psi_b V_b F_ab (|r_ab|^2 - (r_ab . n^_a)^2),
- * grad_a W_ab = F_ab r_ab. For a normal field linear in x the sum reads
- * sum_ij (d n^_i / d x_j) M_ij with M_ij = -sum_b psi_b V_b F_ab r_i r_j, and
- * a level set's unit normal varies along the surface only, so the tangential
- * trace M_a of that moment, over d - 1, is the normalisation that reads the
- * divergence. On a full support M_a / (d - 1) = 1 and Russell's Gamma*_a =
- * sum_b psi_b V_b W_ab (Eq. 3.29) = 1 too; on the band of particles with a
- * normal, and where a wall cuts the band (the rows at a contact line), only
- * M_a stays consistent (with Gamma* the rows at the wall of a 3D cap read
- * 1.00 to 1.06 of 2/R where its body read 1.08 to 1.14).
- * The level set's curvature is then taken to the surface
- * (curvature_at_surface) with the particle's depth below it,
+ * with one (Russell 2018 Eq. 3.28; Morris 2000 sums over those only), the
+ * divergence of the unit normals taken along the surface:
+ *   kappa_a = ((d - 1)/M_a) sum_b psi_b V_b F_ab n^_b . t_ab,
+ *   M_a     = -sum_b psi_b V_b F_ab |t_ab|^2,   t_ab = r_ab - (r_ab . n^_a) n^_a,
+ * grad_a W_ab = F_ab r_ab. A level set's unit normal varies along the
+ * surface only, so for a normal field linear in x the sum reads the
+ * tangential trace of its gradient against the tangential moment M_a, and
+ * (d - 1)/M_a reads the divergence; on a full support M_a / (d - 1) = 1 and
+ * Russell's Gamma*_a (Eq. 3.29) = 1 too, but on the band of particles with a
+ * normal, and where a wall cuts it (the rows at a contact line), only M_a
+ * stays consistent. Russell's (n^_b - n^_a) . r_ab differs from n^_b . t_ab
+ * by (n^_b . n^_a - 1)(r_ab . n^_a), whose first factor any scatter of the
+ * normals makes negative, never positive: on the outer row, whose
+ * neighbours lie below it, the scatter read as convex curvature (a lattice
+ * sphere of R = 10 dx with its particles moved by up to 0.1 dx read 1.13 of
+ * 2/R; the body of a 3D cap at 120 degrees crept from 1.02 to 1.25 of 2/R
+ * while its shape held, until its contact line gave way; BENCHMARKS.md, "The
+ * curvature along the surface").
+ * On a sphere each pair reads the curvature of b's level set, so kappa_a is
+ * that of the level set at the neighbours' mean depth below a,
+ *   u_a = sum_b w_b (kappa_a |t_ab|^2 / (2 (d - 1)) - r_ab . n^_a) / sum_b w_b,
+ * w_b = -psi_b V_b F_ab |t_ab|^2, the first term the sag of the level set
+ * over |t_ab| (Taylor; kappa_a < 0 on a convex surface). It is taken to the
+ * surface (curvature_at_surface) from the depth u_a + delta_a, a's own depth
  *   delta_a = max(0, max_b r_ab . n^_a) + V_a^(1/d) / 2,
- * the height of its outermost neighbour along the outward normal -n^_a, and
- * half a spacing from the outer row's centres to the surface. Capped at
+ * the height of its outermost neighbour along the outward normal -n^_a,
+ * over the b within 45 degrees of it (a normal tilted by epsilon raises a
+ * neighbour at t_ab by epsilon |t_ab|, which the max would keep), and half
+ * a spacing from the outer row's centres to the surface. Capped at
  * |kappa| <= 1/(2 h_st) (Russell Sec. 3.1.2, flaw 4), within near_blocks - 2
  * blocks of the liquid (blocks_from_liquid); 0 elsewhere and where M_a = 0
  * (no neighbour along the surface). With the inward normal, a convex surface
@@ -740,7 +753,7 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
             int cc[3];
             real x_a[3], n_a[3];
             const real support2 = surface_loop_centre(&g, &p, cell, position, a, cc, x_a), support = sqrt(support2);
-            real divergence = REAL(0.0), moment = REAL(0.0), rise = REAL(0.0);
+            real divergence = REAL(0.0), moment = REAL(0.0), rise = REAL(0.0), lift = REAL(0.0), spread = REAL(0.0);
             for (int d = 0; d < 3; ++d)
                 n_a[d] = unit_normal[3 * a + d];
             FOR_EACH_NEIGHBOUR_NEAR(b, run, &g, cc, x_a, cell_start, p.reach, support)
@@ -753,16 +766,22 @@ KERNEL void surface_curvature(GLOBAL const real *position, GLOBAL const real *de
                 const real v_b = normal_weight[b] * mass[b] / density[b];
                 const real f = v_b * smoothing_grad_factor(sqrt(r2), p.h);
                 const real across = dot3(r_ab, n_a);
-                real n_ba[3];
+                real n_b[3];
                 for (int d = 0; d < 3; ++d)
-                    n_ba[d] = unit_normal[3 * b + d] - n_a[d];
-                divergence += f * dot3(n_ba, r_ab);
-                moment -= f * (r2 - across * across);
-                rise = fmax(rise, across);
+                    n_b[d] = unit_normal[3 * b + d];
+                const real tangential2 = r2 - across * across;
+                divergence += f * (dot3(n_b, r_ab) - across * dot3(n_b, n_a)); /* f n^_b . t_ab */
+                moment -= f * tangential2;
+                lift -= f * tangential2 * across;
+                spread -= f * tangential2 * tangential2;
+                if (across * across >= tangential2)
+                    rise = fmax(rise, across);
             }
             if (moment > REAL(0.0)) {
-                const real depth = rise + REAL(0.5) * dimension_root(mass[a] / density[a]);
-                kappa = curvature_at_surface((real)(AMSPH_DIM - 1) * divergence / moment, depth);
+                const real level = (real)(AMSPH_DIM - 1) * divergence / moment;
+                const real below = (level * spread / (REAL(2.0) * (real)(AMSPH_DIM - 1)) - lift) / moment; /* u_a */
+                const real depth = below + rise + REAL(0.5) * dimension_root(mass[a] / density[a]);
+                kappa = curvature_at_surface(level, depth);
                 kappa = fmin(fmax(kappa, -p.max_curvature), p.max_curvature);
             }
         }
