@@ -64,11 +64,4 @@ static inline amsph_arg fixture_geometry(const grid_fixture *f)
     return amsph_arg_bytes(&f->g.geometry, sizeof f->g.geometry);
 }
 
-/* Deterministic uniform numbers in [0, 1). */
-static inline double fixture_random(unsigned long long *state)
-{
-    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*state >> 11) * 0x1.0p-53;
-}
-
 #endif

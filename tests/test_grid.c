@@ -23,7 +23,7 @@ static void place_random(double *x, int n, int dim, unsigned long long *s)
 {
     for (int i = 0; i < n; ++i)
         for (int d = 0; d < 3; ++d)
-            x[3 * i + d] = d < dim ? lo[d] + (hi[d] - lo[d]) * fixture_random(s) : 0.0;
+            x[3 * i + d] = d < dim ? lo[d] + (hi[d] - lo[d]) * testing_random(s) : 0.0;
 }
 
 /* Three tight clusters and a sparse background. */
@@ -33,8 +33,8 @@ static void place_clustered(double *x, int n, int dim, unsigned long long *s)
     for (int i = 0; i < n; ++i)
         for (int d = 0; d < 3; ++d) {
             const double c = centres[i % 3][d];
-            double v = i % 7 == 0 ? lo[d] + (hi[d] - lo[d]) * fixture_random(s)
-                                  : c + 0.06 * (fixture_random(s) - 0.5);
+            double v = i % 7 == 0 ? lo[d] + (hi[d] - lo[d]) * testing_random(s)
+                                  : c + 0.06 * (testing_random(s) - 0.5);
             v = fmin(fmax(v, lo[d]), hi[d]);
             x[3 * i + d] = d < dim ? v : 0.0;
         }
@@ -45,7 +45,7 @@ static void place_one_cell(double *x, int n, int dim, unsigned long long *s)
 {
     for (int i = 0; i < n; ++i)
         for (int d = 0; d < 3; ++d)
-            x[3 * i + d] = d < dim ? 0.3 + 0.099 * fixture_random(s) : 0.0;
+            x[3 * i + d] = d < dim ? 0.3 + 0.099 * testing_random(s) : 0.0;
 }
 
 /* Coordinates on cell faces (multiples of the cell size) and domain faces. */
@@ -54,8 +54,8 @@ static void place_on_faces(double *x, int n, int dim, unsigned long long *s)
     for (int i = 0; i < n; ++i)
         for (int d = 0; d < 3; ++d) {
             const int faces = (int)floor((hi[d] - lo[d]) / support);
-            const double on_face = support * floor(fixture_random(s) * (faces + 1));
-            const double v = i % 2 ? fmin(on_face, hi[d]) : lo[d] + (hi[d] - lo[d]) * fixture_random(s);
+            const double on_face = support * floor(testing_random(s) * (faces + 1));
+            const double v = i % 2 ? fmin(on_face, hi[d]) : lo[d] + (hi[d] - lo[d]) * testing_random(s);
             x[3 * i + d] = d < dim ? v : 0.0;
         }
 }
@@ -67,7 +67,7 @@ static void place_fluid_slab(double *x, int n, int dim, unsigned long long *s)
     place_random(x, n, dim, s);
     for (int i = 0; i < n; ++i)
         if (!fixture_is_wall(i))
-            x[3 * i] = 0.25 + 0.1 * fixture_random(s);
+            x[3 * i] = 0.25 + 0.1 * testing_random(s);
 }
 
 static const input_case inputs[] = {

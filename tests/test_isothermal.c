@@ -759,12 +759,6 @@ static const char *cloud_case =
     "geometry:\n"
     "  - {shape: box, kind: fluid, material: liquid, min: %s, max: %s}\n";
 
-static double uniform(unsigned long long *state)
-{
-    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*state >> 11) / 9007199254740992.0; /* [0, 1) */
-}
-
 enum { CLOUD_MAX = 216 };
 
 typedef struct {
@@ -780,10 +774,10 @@ static void perturb_cloud(amsph_host_particles *h, int dim, double dx)
     for (int i = 0; i < h->n; ++i) {
         unsigned long long state = 12345 + 7919ULL * ((unsigned *)h->data[AMSPH_FIELD_ID])[i];
         for (int d = 0; d < dim; ++d) {
-            amsph_host_real(h, AMSPH_FIELD_POSITION)[3 * i + d] += (amsph_real)(0.3 * dx * (uniform(&state) - 0.5));
-            amsph_host_real(h, AMSPH_FIELD_VELOCITY)[3 * i + d] = (amsph_real)(0.2 * (uniform(&state) - 0.5));
+            amsph_host_real(h, AMSPH_FIELD_POSITION)[3 * i + d] += (amsph_real)(0.3 * dx * (testing_random(&state) - 0.5));
+            amsph_host_real(h, AMSPH_FIELD_VELOCITY)[3 * i + d] = (amsph_real)(0.2 * (testing_random(&state) - 0.5));
         }
-        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(1000.0 * (0.9 + 0.2 * uniform(&state)));
+        amsph_host_real(h, AMSPH_FIELD_DENSITY)[i] = (amsph_real)(1000.0 * (0.9 + 0.2 * testing_random(&state)));
     }
 }
 

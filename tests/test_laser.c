@@ -12,6 +12,7 @@
 #include "laser.h"
 #include "sim.h"
 #include "testing.h"
+#include "testing_run.h"
 
 
 static int parse(const char *text, amsph_case *c)
@@ -96,30 +97,19 @@ static void test_schedule(void)
 
 /* Random particles (positions over the box, masses and densities +-20%)
  * replace the case's lattice; the grid is sorted again. */
-static unsigned long long lcg_state;
-
-static double uniform(void)
-{
-    lcg_state = lcg_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(lcg_state >> 11) / 9007199254740992.0;
-}
-
 static int scatter_particles(amsph_sim *s, const double lo[3], const double hi[3])
 {
     amsph_host_particles h;
     AMSPH_CHECK(amsph_particles_download(&s->particles, &h));
-    lcg_state = 12345;
+    unsigned long long state = 12345;
     for (int i = 0; i < h.n; ++i) {
         for (int d = 0; d < s->config.dim; ++d)
-            amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d] = (amsph_real)(lo[d] + (hi[d] - lo[d]) * uniform());
-        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] *= (amsph_real)(0.8 + 0.4 * uniform());
-        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] *= (amsph_real)(0.8 + 0.4 * uniform());
+            amsph_host_real(&h, AMSPH_FIELD_POSITION)[3 * i + d] =
+                (amsph_real)(lo[d] + (hi[d] - lo[d]) * testing_random(&state));
+        amsph_host_real(&h, AMSPH_FIELD_MASS)[i] *= (amsph_real)(0.8 + 0.4 * testing_random(&state));
+        amsph_host_real(&h, AMSPH_FIELD_DENSITY)[i] *= (amsph_real)(0.8 + 0.4 * testing_random(&state));
     }
-    amsph_particles_free(&s->particles);
-    int status = amsph_particles_upload(s->backend, &h, &s->particles);
-    amsph_host_free(&h);
-    AMSPH_CHECK(status);
-    return amsph_grid_sort(&s->grid, &s->particles);
+    return testing_replace_particles(s, &h);
 }
 
 /* Russell 2018 §3.2.2 written serially and independently of the kernels:

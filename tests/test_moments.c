@@ -62,7 +62,7 @@ static void lattice(int dim, int per_axis, double dx, double jitter, double *x, 
     for (int i = 0; i < n; ++i) {
         int k = i;
         for (int d = 0; d < 3; ++d) {
-            const double jit = jitter * dx * (2.0 * fixture_random(&state) - 1.0);
+            const double jit = jitter * dx * (2.0 * testing_random(&state) - 1.0);
             x[3 * i + d] = d < dim ? (k % per_axis + 0.5) * dx + jit : 0.0;
             k /= per_axis;
         }

@@ -43,6 +43,14 @@ static int testing_passed, testing_failed;
 static char testing_temp_dirs[TESTING_MAX_TEMP_DIRS][256];
 static int testing_n_temp_dirs;
 
+/* Deterministic uniform numbers in [0, 1) from a seeded LCG (Knuth's MMIX
+ * constants): a test's draws are the same on every run and machine. */
+static inline double testing_random(unsigned long long *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*state >> 11) * 0x1.0p-53;
+}
+
 /* Makes the directory /tmp/amsph_test_<tag>_XXXXXX; its name into dir. */
 static inline int testing_temp_dir(char *dir, size_t size, const char *tag)
 {

@@ -29,6 +29,17 @@ static inline int testing_run_case(const amsph_case *c, int k, double until, ams
     return status;
 }
 
+/* Replaces the sim's particles with h (freed here) and sorts the grid again,
+ * for a test that moves or changes particles between steps. */
+static inline int testing_replace_particles(amsph_sim *s, amsph_host_particles *h)
+{
+    amsph_particles_free(&s->particles);
+    const int status = amsph_particles_upload(s->backend, h, &s->particles);
+    amsph_host_free(h);
+    AMSPH_CHECK(status);
+    return amsph_grid_sort(&s->grid, &s->particles);
+}
+
 /* The largest magnitude of field f over set a, and the largest difference
  * between a and b (the same particles in the same order: two backends' runs
  * of one case), over every component. */
