@@ -16,6 +16,10 @@ int amsph_surface_allocate(amsph_sim *s);
  * the grain particles' forces, before the grains' sums; after the step's
  * amsph_fluid_density, whose fluid counts per cell it reads). */
 int amsph_surface_forces(amsph_sim *s);
+/* The curvature alone (raw_curvature), from the unit normals and normal
+ * weights the particles hold: the pass of amsph_surface_forces after the
+ * normals, for a test that prescribes them. */
+int amsph_surface_curvature(amsph_sim *s);
 /* Lowers *dt to the capillary limit 0.25 sqrt(rho h^3 / (2 pi sigma))
  * (Fuchs et al. 2022 Eq. 42; PHYSICS.md erratum 3) with the smallest
  * reference density and the largest sigma(T) of the particles, and, with
