@@ -183,26 +183,26 @@ static amsph_arg wetting_field(amsph_sim *s, amsph_field_id f)
 }
 
 /* The curvature pass (kernels/surface.cl, surface_curvature) from the unit
- * normals and normal weights the particles hold, into raw_curvature. */
-static int curvature_pass(amsph_sim *s, amsph_arg away)
+ * normals and normal weights the particles hold, into raw_curvature; grid,
+ * params and away as amsph_surface_forces builds them. */
+static int curvature_pass(amsph_sim *s, amsph_arg grid, amsph_arg params, amsph_arg away)
 {
     const int n = s->particles.n;
     return AMSPH_LAUNCH(s->backend, "surface_curvature", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_DENSITY), field(s, AMSPH_FIELD_MASS),
                         field(s, AMSPH_FIELD_UNIT_NORMAL), field(s, AMSPH_FIELD_NORMAL_WEIGHT),
                         field(s, AMSPH_FIELD_KIND), field(s, AMSPH_FIELD_MATERIAL), amsph_arg_buffer(s->materials),
-                        amsph_arg_buffer(s->grid.cell), amsph_arg_int(n),
-                        amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                        amsph_arg_buffer(s->grid.cell_start), away, amsph_arg_bytes(&s->surface, sizeof s->surface),
-                        field(s, AMSPH_FIELD_RAW_CURVATURE));
+                        amsph_arg_buffer(s->grid.cell), amsph_arg_int(n), grid, amsph_arg_buffer(s->grid.cell_start),
+                        away, params, field(s, AMSPH_FIELD_RAW_CURVATURE));
 }
 
 int amsph_surface_curvature(amsph_sim *s)
 {
+    const amsph_arg grid = amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry);
+    const amsph_arg params = amsph_arg_bytes(&s->surface, sizeof s->surface);
     amsph_buffer *away;
-    AMSPH_CHECK(find_liquid_blocks(s, amsph_arg_bytes(&s->grid.geometry, sizeof s->grid.geometry),
-                                   amsph_arg_bytes(&s->surface, sizeof s->surface), &away));
-    return curvature_pass(s, amsph_arg_buffer(away));
+    AMSPH_CHECK(find_liquid_blocks(s, grid, params, &away));
+    return curvature_pass(s, grid, params, amsph_arg_buffer(away));
 }
 
 int amsph_surface_forces(amsph_sim *s)
@@ -243,7 +243,7 @@ int amsph_surface_forces(amsph_sim *s)
                                  temperature(s), amsph_arg_buffer(s->materials), cells,
                                  amsph_arg_int(n), grid, cell_start, params,
                                  field(s, AMSPH_FIELD_UNIT_NORMAL)));
-    AMSPH_CHECK(curvature_pass(s, away));
+    AMSPH_CHECK(curvature_pass(s, grid, params, away));
     AMSPH_CHECK(AMSPH_LAUNCH(b, "surface_force", n, field(s, AMSPH_FIELD_POSITION),
                         field(s, AMSPH_FIELD_VELOCITY), field(s, AMSPH_FIELD_DENSITY),
                         field(s, AMSPH_FIELD_MASS), temperature(s),
