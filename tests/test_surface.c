@@ -839,8 +839,9 @@ static void check_sessile_cap(const char *file, double theta0, double dx, double
  * (2.6%; BENCHMARKS.md). The half sphere of sessile_cap_3d.yaml at 60
  * degrees, at dx = 0.1 m (radius 8.5 dx) to 20 s: measured 64.74 degrees
  * (64.25 with Russell's divergence sum, 62.1 before the curvature was taken
- * to the surface). In 3D the caps rest off theta0 toward 90 degrees, the
- * rows at the contact line over-reading the curvature: at 120 degrees this
+ * to the surface). In 3D the caps rest off theta0 toward 90 degrees, as the
+ * push on the rows at the wall sets it (BENCHMARKS.md, "The solids coloured
+ * as the surface extended into them"): at 120 degrees this
  * spacing rests at 112.1 to 112.7 from 40 to 60 s, the case's 12 dx at 115.5
  * to 116.6 from 14 to 40 s, and 16 dx overshoots to 123.4 and slides back to
  * 116.9 at 36 s (BENCHMARKS.md, "The curvature along the surface" and "The
