@@ -841,11 +841,11 @@ static void check_sessile_cap(const char *file, double theta0, double dx, double
  * (64.25 with Russell's divergence sum, 62.1 before the curvature was taken
  * to the surface). In 3D the caps rest off theta0 toward 90 degrees, as the
  * push on the rows at the wall sets it (BENCHMARKS.md, "The solids coloured
- * as the surface extended into them"): at 120 degrees this
- * spacing rests at 112.1 to 112.7 from 40 to 60 s, the case's 12 dx at 115.5
- * to 116.6 from 14 to 40 s, and 16 dx overshoots to 123.4 and slides back to
- * 116.9 at 36 s (BENCHMARKS.md, "The curvature along the surface" and "The
- * 3D cap at 120 degrees by resolution"). */
+ * as the surface extended into them"): at 120 degrees this spacing rests at
+ * 112.1 to 112.7 from 40 to 60 s, the case's 12 dx at 115.5 to 116.6 from
+ * 14 to 40 s, and 16 dx overshoots to 123.4 and slides back to 116.9 at 36 s
+ * (BENCHMARKS.md, "The curvature along the surface" and "The 3D cap at 120
+ * degrees by resolution"). */
 static void test_sessile_cap(void)
 {
     check_sessile_cap("sessile_cap_2d.yaml", 60.0, 0.0, 0.0);

@@ -28,7 +28,8 @@ of a short arc drifts with the staircase; the geometric fit, with the longer
 arc and two unknowns, reads the 60-degree lattice caps at 59.7 and 59.6
 degrees (3D, 2D) at 20 dx, 59.8 and 59.0 at 14 dx, 60.1 and 60.6 at 12 dx, and
 the 120-degree caps within 0.8 degree from 12 dx up; below 12 dx its 60-degree
-readings fall low (56.4 and 55.3 at 8.5 dx).
+readings fall low (56.4 and 55.3 at 8.5 dx). Where a cap is not round near the
+wall the two readings part (BENCHMARKS.md, "A second reading of the contact angle").
 """
 import argparse
 import glob
