@@ -2429,6 +2429,12 @@ static const char *choice_name(const choice *choices, int value)
     return choices->name;
 }
 
+const char *amsph_kind_name(int kind)
+{
+    const char *name = choice_name(kind_choices, kind);
+    return name ? name : "unknown";
+}
+
 static shown default_text(const key_spec *k)
 {
     shown out;

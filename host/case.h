@@ -27,6 +27,9 @@ typedef enum {
     AMSPH_KIND_GRAIN = KIND_GRAIN
 } amsph_kind;
 
+/* The case file's name of a kind (`fluid`, `wall`, ...). */
+const char *amsph_kind_name(int kind);
+
 typedef enum {
     AMSPH_SHAPE_BOX = 0,
     AMSPH_SHAPE_CIRCLE = 1, /* 2D only */

@@ -1,5 +1,6 @@
 #include "guards.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -30,6 +31,78 @@ static int first_with_code(amsph_sim *s, int code, int *index)
     return status;
 }
 
+/* One field of every particle, downloaded into a new array. */
+static int fetch_all(amsph_sim *s, amsph_field_id f, void **out)
+{
+    const size_t bytes = (size_t)s->particles.n * amsph_field_bytes(f);
+    *out = malloc(bytes ? bytes : 1);
+    if (!*out)
+        return amsph_fail("out of host memory reading a field for the guard's report");
+    return amsph_download(s->backend, s->particles.field[f], 0, bytes, *out);
+}
+
+/* The particle nearest to particle i, which the spacing guard stopped: a scan
+ * of every position, with the nearest periodic image on periodic axes. */
+typedef struct {
+    int index;
+    double distance;
+    double closing_speed; /* -(u_i - u_j) . e_ij: positive while the pair closes */
+} nearest_pair;
+
+static int nearest_neighbour(amsph_sim *s, int i, nearest_pair *pair)
+{
+    amsph_real *x = NULL, *u = NULL;
+    int status = fetch_all(s, AMSPH_FIELD_POSITION, (void **)&x);
+    if (!status)
+        status = fetch_all(s, AMSPH_FIELD_VELOCITY, (void **)&u);
+    const grid_geometry *g = &s->grid.geometry;
+    double best = INFINITY, e[3] = {0.0, 0.0, 0.0};
+    pair->index = -1;
+    for (int j = 0; !status && j < s->particles.n; ++j) {
+        double r[3], r2 = 0.0;
+        for (int d = 0; d < 3; ++d) {
+            r[d] = (double)x[3 * i + d] - x[3 * j + d];
+            if (g->periodic[d])
+                r[d] = remainder(r[d], g->length[d]);
+            r2 += r[d] * r[d];
+        }
+        if (j != i && r2 < best) {
+            best = r2;
+            pair->index = j;
+            for (int d = 0; d < 3; ++d)
+                e[d] = r[d];
+        }
+    }
+    pair->distance = sqrt(best);
+    pair->closing_speed = 0.0;
+    for (int d = 0; !status && pair->index >= 0 && d < 3; ++d)
+        pair->closing_speed -= ((double)u[3 * i + d] - u[3 * pair->index + d]) * e[d] / pair->distance;
+    free(x);
+    free(u);
+    return status ? status : pair->index < 0 ? amsph_fail("the spacing guard found no second particle") : 0;
+}
+
+/* The spacing guard's message: the pair, how fast it closes, and the setting
+ * that keeps such pairs apart (Fuchs et al. 2022 Eq. 34). */
+static int report_close_pair(amsph_sim *s, int i, const char *where, double limit)
+{
+    nearest_pair pair;
+    AMSPH_CHECK(nearest_neighbour(s, i, &pair));
+    unsigned id;
+    int kind;
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_ID, pair.index, &id));
+    AMSPH_CHECK(fetch(s, AMSPH_FIELD_KIND, pair.index, &kind));
+    const amsph_fluid_settings *f = &s->config.fluid;
+    const double dx = s->config.dx;
+    const char *remedy = f->barrier_stiffness > 0.0
+                             ? "a stiffer fluid.barrier or a larger barrier distance keeps such pairs apart"
+                             : "a barrier (fluid.barrier, Fuchs et al. 2022 Eq. 34) keeps such pairs apart";
+    return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest neighbour, %s "
+                      "particle id %u, closing at %.3g m/s (limit %.3g dx); %s",
+                      where, pair.distance / dx, amsph_kind_name(kind), id, pair.closing_speed, limit,
+                      remedy);
+}
+
 static int report(amsph_sim *s, int code, int i)
 {
     amsph_real x[3];
@@ -43,16 +116,12 @@ static int report(amsph_sim *s, int code, int i)
         return amsph_fail("guard 'finite values' failed: %s has a non-finite position, velocity, density "
                           "or temperature; reduce cfl or check the case's forces and material values",
                           where);
-    amsph_real rho, rho0, nearest;
+    const amsph_fluid_settings *f = &s->config.fluid;
+    if (code == GUARD_CLOSE)
+        return report_close_pair(s, i, where, f->min_pair_distance);
+    amsph_real rho, rho0;
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_DENSITY, i, &rho));
     AMSPH_CHECK(fetch(s, AMSPH_FIELD_REFERENCE_DENSITY, i, &rho0));
-    AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof nearest, sizeof nearest, &nearest));
-    const amsph_fluid_settings *f = &s->config.fluid;
-    const double dx = s->config.dx;
-    if (code == GUARD_CLOSE)
-        return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest "
-                          "neighbour (limit %.3g dx)",
-                          where, (double)nearest / dx, f->min_pair_distance);
     return amsph_fail("guard 'density error' failed: %s has density %.6g kg/m^3, %.3g%% from "
                       "rho0 = %.6g (limit %.3g%%); raise sound_speed or max_density_error",
                       where, (double)rho, 100.0 * ((double)rho - rho0) / rho0, (double)rho0,

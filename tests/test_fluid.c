@@ -735,6 +735,61 @@ static void test_not_finite_position(void)
     stop_sim(b, &s);
 }
 
+/* The index of the particle with identity id in a download. */
+static int index_of_id(const amsph_host_particles *h, unsigned id)
+{
+    int i = 0;
+    while (i < h->n && ((const unsigned *)h->data[AMSPH_FIELD_ID])[i] != id)
+        ++i;
+    return i;
+}
+
+/* The spacing guard's message names the stopped particle and its nearest
+ * neighbour with its kind and closing speed: read back against the state the
+ * guard stopped in (the pair's distance below the limit, no particle nearer
+ * to the first, the speed -(u_a - u_b) . e_ab). */
+static void check_close_pair_report(amsph_sim *s)
+{
+    const char *msg = amsph_last_error(), *second = strstr(msg, "nearest neighbour, ");
+    unsigned ida = 0, idb = 0;
+    char kind[16] = "";
+    double reported = 0.0, closing = 0.0;
+    const char *first = strstr(msg, "particle id ");
+    CHECK(first && second && sscanf(first, "particle id %u", &ida) == 1 &&
+              sscanf(second, "nearest neighbour, %15s particle id %u, closing at %lf", kind, &idb, &closing) == 3 &&
+              sscanf(strstr(msg, " is "), " is %lf dx", &reported) == 1,
+          "the spacing guard's message should name the pair: %s", msg);
+    amsph_host_particles h;
+    CHECK_OK(amsph_particles_download(&s->particles, &h));
+    const int a = index_of_id(&h, ida), b = index_of_id(&h, idb);
+    CHECK(a < h.n && b < h.n && a != b, "ids %u and %u of the message not found", ida, idb);
+    if (a < h.n && b < h.n && a != b) {
+        const amsph_real *x = amsph_host_real(&h, AMSPH_FIELD_POSITION), *u = amsph_host_real(&h, AMSPH_FIELD_VELOCITY);
+        double nearest = INFINITY, r[3], r_ab = 0.0, speed = 0.0;
+        for (int j = 0; j < h.n; ++j) {
+            double r2 = 0.0;
+            for (int d = 0; d < 3; ++d)
+                r2 += ((double)x[3 * a + d] - x[3 * j + d]) * ((double)x[3 * a + d] - x[3 * j + d]);
+            if (j != a && r2 < nearest * nearest)
+                nearest = sqrt(r2);
+        }
+        for (int d = 0; d < 3; ++d) {
+            r[d] = (double)x[3 * a + d] - x[3 * b + d];
+            r_ab += r[d] * r[d];
+        }
+        r_ab = sqrt(r_ab);
+        for (int d = 0; d < 3; ++d)
+            speed -= ((double)u[3 * a + d] - u[3 * b + d]) * r[d] / r_ab;
+        const int kind_b = ((const int *)h.data[AMSPH_FIELD_KIND])[b];
+        CHECK(r_ab == nearest && r_ab < s->config.fluid.min_pair_distance * s->config.dx &&
+                  fabs(r_ab / s->config.dx - reported) < 5e-3 && fabs(speed - closing) <= 5e-3 * fabs(speed) &&
+                  speed > 0.0 && strcmp(kind, amsph_kind_name(kind_b)) == 0,
+              "pair %u-%u: %.4f dx (nearest %.4f, message %.3g), closing %.4g m/s (message %.3g), kind %s (%s)", ida,
+              idb, r_ab / s->config.dx, nearest / s->config.dx, reported, speed, closing, amsph_kind_name(kind_b), kind);
+    }
+    amsph_host_free(&h);
+}
+
 /* The coarse 2D dam break (dx = 0.0146, 10 particles across the column)
  * pairs two fluid particles under tension closer than 0.3 dx at t = 0.275 s
  * without Monaghan's tensile correction; with it the run reaches its end. */
@@ -755,6 +810,8 @@ static void test_tensile_correction(void)
             CHECK(status != 0 && strstr(amsph_last_error(), "guard 'particle spacing'"),
                   "without the correction the coarse dam break should pair particles (status %d: %s)",
                   status, status ? amsph_last_error() : "");
+        if (!on && status != 0)
+            check_close_pair_report(&s);
         stop_sim(b, &s);
     }
 }
