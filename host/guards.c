@@ -45,7 +45,6 @@ static int fetch_all(amsph_sim *s, amsph_field_id f, void **out)
  * of every position, with the nearest periodic image on periodic axes. */
 typedef struct {
     int index;
-    double distance;
     double closing_speed; /* -(u_i - u_j) . e_ij: positive while the pair closes */
 } nearest_pair;
 
@@ -56,7 +55,7 @@ static int nearest_neighbour(amsph_sim *s, int i, nearest_pair *pair)
     if (!status)
         status = fetch_all(s, AMSPH_FIELD_VELOCITY, (void **)&u);
     const grid_geometry *g = &s->grid.geometry;
-    double best = INFINITY, e[3] = {0.0, 0.0, 0.0};
+    double best = INFINITY, r_pair[3] = {0.0, 0.0, 0.0};
     pair->index = -1;
     for (int j = 0; !status && j < s->particles.n; ++j) {
         double r[3], r2 = 0.0;
@@ -70,22 +69,24 @@ static int nearest_neighbour(amsph_sim *s, int i, nearest_pair *pair)
             best = r2;
             pair->index = j;
             for (int d = 0; d < 3; ++d)
-                e[d] = r[d];
+                r_pair[d] = r[d];
         }
     }
-    pair->distance = sqrt(best);
     pair->closing_speed = 0.0;
     for (int d = 0; !status && pair->index >= 0 && d < 3; ++d)
-        pair->closing_speed -= ((double)u[3 * i + d] - u[3 * pair->index + d]) * e[d] / pair->distance;
+        pair->closing_speed -= ((double)u[3 * i + d] - u[3 * pair->index + d]) * r_pair[d] / sqrt(best);
     free(x);
     free(u);
     return status ? status : pair->index < 0 ? amsph_fail("the spacing guard found no second particle") : 0;
 }
 
-/* The spacing guard's message: the pair, how fast it closes, and the setting
- * that keeps such pairs apart (Fuchs et al. 2022 Eq. 34). */
+/* The spacing guard's message: the distance it tested, the pair, how fast it
+ * closes, and the setting that keeps such pairs apart (Fuchs et al. 2022
+ * Eq. 34). */
 static int report_close_pair(amsph_sim *s, int i, const char *where, double limit)
 {
+    amsph_real closest;
+    AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof closest, sizeof closest, &closest));
     nearest_pair pair;
     AMSPH_CHECK(nearest_neighbour(s, i, &pair));
     unsigned id;
@@ -99,7 +100,7 @@ static int report_close_pair(amsph_sim *s, int i, const char *where, double limi
                              : "a barrier (fluid.barrier, Fuchs et al. 2022 Eq. 34) keeps such pairs apart";
     return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest neighbour, %s "
                       "particle id %u, closing at %.3g m/s (limit %.3g dx); %s",
-                      where, pair.distance / dx, amsph_kind_name(kind), id, pair.closing_speed, limit,
+                      where, (double)closest / dx, amsph_kind_name(kind), id, pair.closing_speed, limit,
                       remedy);
 }
 
