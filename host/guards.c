@@ -31,53 +31,33 @@ static int first_with_code(amsph_sim *s, int code, int *index)
     return status;
 }
 
-/* One field of every particle, downloaded into a new array. */
-static int fetch_all(amsph_sim *s, amsph_field_id f, void **out)
+/* The particle nearest to particle a, which the spacing guard stopped (a scan
+ * of the downloaded state, with the nearest periodic image on periodic
+ * axes), and the speed -(u_a - u_b) . e_ab at which the pair closes. */
+static int nearest_neighbour(const amsph_host_particles *h, const grid_geometry *g, int a, double *closing_speed)
 {
-    const size_t bytes = (size_t)s->particles.n * amsph_field_bytes(f);
-    *out = malloc(bytes ? bytes : 1);
-    if (!*out)
-        return amsph_fail("out of host memory reading a field for the guard's report");
-    return amsph_download(s->backend, s->particles.field[f], 0, bytes, *out);
-}
-
-/* The particle nearest to particle i, which the spacing guard stopped: a scan
- * of every position, with the nearest periodic image on periodic axes. */
-typedef struct {
-    int index;
-    double closing_speed; /* -(u_i - u_j) . e_ij: positive while the pair closes */
-} nearest_pair;
-
-static int nearest_neighbour(amsph_sim *s, int i, nearest_pair *pair)
-{
-    amsph_real *x = NULL, *u = NULL;
-    int status = fetch_all(s, AMSPH_FIELD_POSITION, (void **)&x);
-    if (!status)
-        status = fetch_all(s, AMSPH_FIELD_VELOCITY, (void **)&u);
-    const grid_geometry *g = &s->grid.geometry;
-    double best = INFINITY, r_pair[3] = {0.0, 0.0, 0.0};
-    pair->index = -1;
-    for (int j = 0; !status && j < s->particles.n; ++j) {
+    const amsph_real *x = amsph_host_real(h, AMSPH_FIELD_POSITION), *u = amsph_host_real(h, AMSPH_FIELD_VELOCITY);
+    double best = INFINITY, r_ab[3] = {0.0, 0.0, 0.0};
+    int nearest = -1;
+    for (int b = 0; b < h->n; ++b) {
         double r[3], r2 = 0.0;
         for (int d = 0; d < 3; ++d) {
-            r[d] = (double)x[3 * i + d] - x[3 * j + d];
+            r[d] = (double)x[3 * a + d] - x[3 * b + d];
             if (g->periodic[d])
                 r[d] = remainder(r[d], g->length[d]);
             r2 += r[d] * r[d];
         }
-        if (j != i && r2 < best) {
+        if (b != a && r2 < best) {
             best = r2;
-            pair->index = j;
+            nearest = b;
             for (int d = 0; d < 3; ++d)
-                r_pair[d] = r[d];
+                r_ab[d] = r[d];
         }
     }
-    pair->closing_speed = 0.0;
-    for (int d = 0; !status && pair->index >= 0 && d < 3; ++d)
-        pair->closing_speed -= ((double)u[3 * i + d] - u[3 * pair->index + d]) * r_pair[d] / sqrt(best);
-    free(x);
-    free(u);
-    return status ? status : pair->index < 0 ? amsph_fail("the spacing guard found no second particle") : 0;
+    *closing_speed = 0.0;
+    for (int d = 0; nearest >= 0 && d < 3; ++d)
+        *closing_speed -= ((double)u[3 * a + d] - u[3 * nearest + d]) * r_ab[d] / sqrt(best);
+    return nearest;
 }
 
 /* The spacing guard's message: the distance it tested, the pair, how fast it
@@ -87,20 +67,26 @@ static int report_close_pair(amsph_sim *s, int i, const char *where, double limi
 {
     amsph_real closest;
     AMSPH_CHECK(amsph_download(s->backend, s->closest, (size_t)i * sizeof closest, sizeof closest, &closest));
-    nearest_pair pair;
-    AMSPH_CHECK(nearest_neighbour(s, i, &pair));
-    unsigned id;
-    int kind;
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_ID, pair.index, &id));
-    AMSPH_CHECK(fetch(s, AMSPH_FIELD_KIND, pair.index, &kind));
+    amsph_host_particles h;
+    const int status = amsph_particles_download(&s->particles, &h);
+    if (status) {
+        amsph_host_free(&h);
+        return status;
+    }
+    double closing_speed;
+    const int j = nearest_neighbour(&h, &s->grid.geometry, i, &closing_speed);
+    const unsigned id = j >= 0 ? ((const unsigned *)h.data[AMSPH_FIELD_ID])[j] : 0;
+    const int kind = j >= 0 ? ((const int *)h.data[AMSPH_FIELD_KIND])[j] : -1;
+    amsph_host_free(&h);
+    if (j < 0)
+        return amsph_fail("the spacing guard found no second particle");
     const amsph_fluid_settings *f = &s->config.fluid;
-    const double dx = s->config.dx;
     const char *remedy = f->barrier_stiffness > 0.0
                              ? "a stiffer fluid.barrier or a larger barrier distance keeps such pairs apart"
                              : "a barrier (fluid.barrier, Fuchs et al. 2022 Eq. 34) keeps such pairs apart";
     return amsph_fail("guard 'particle spacing' failed: %s is %.3g dx from its nearest neighbour, %s "
                       "particle id %u, closing at %.3g m/s (limit %.3g dx); %s",
-                      where, (double)closest / dx, amsph_kind_name(kind), id, pair.closing_speed, limit,
+                      where, (double)closest / s->config.dx, amsph_kind_name(kind), id, closing_speed, limit,
                       remedy);
 }
 

@@ -746,18 +746,20 @@ static int index_of_id(const amsph_host_particles *h, unsigned id)
 
 /* The spacing guard's message names the stopped particle and its nearest
  * neighbour with its kind and closing speed: read back against the state the
- * guard stopped in (the pair's distance below the limit, no particle nearer
- * to the first, the speed -(u_a - u_b) . e_ab). */
+ * guard stopped in (the pair's distance below the limit and as printed, no
+ * particle nearer to the first, the speed -(u_a - u_b) . e_ab). The dam break
+ * does not shift particles, so the distance the guard tested (before a
+ * shift) is the state's. */
 static void check_close_pair_report(amsph_sim *s)
 {
     const char *msg = amsph_last_error(), *second = strstr(msg, "nearest neighbour, ");
     unsigned ida = 0, idb = 0;
     char kind[16] = "";
     double reported = 0.0, closing = 0.0;
-    const char *first = strstr(msg, "particle id ");
-    CHECK(first && second && sscanf(first, "particle id %u", &ida) == 1 &&
+    const char *first = strstr(msg, "particle id "), *distance = strstr(msg, " is ");
+    CHECK(first && second && distance && sscanf(first, "particle id %u", &ida) == 1 &&
               sscanf(second, "nearest neighbour, %15s particle id %u, closing at %lf", kind, &idb, &closing) == 3 &&
-              sscanf(strstr(msg, " is "), " is %lf dx", &reported) == 1,
+              sscanf(distance, " is %lf dx", &reported) == 1,
           "the spacing guard's message should name the pair: %s", msg);
     amsph_host_particles h;
     CHECK_OK(amsph_particles_download(&s->particles, &h));
