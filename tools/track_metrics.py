@@ -2,12 +2,17 @@
 """Russell's track metrics (2018 Table 5.3) from the snapshots of a run.
 
     tools/track_metrics.py OUTDIR [--time 0.26e-3] [--surface 0] [--solidus 1673] [--liquidus 1773]
+                           [--end-margin 50e-6]
 
 At the snapshot nearest --time (Russell: 0.26 ms, mid-lasering):
   penetration  the deepest initial position, below the substrate's initial
                surface (y or z = --surface), of a substrate particle whose
                peak temperature has reached the solidus (and the liquidus),
                in um: particle centres, followed by id from the first snapshot;
+               over the track, leaving out the substrate within --end-margin
+               of its side faces across the scan (x), where melt that runs
+               over the edge heats the face from the side; their own
+               penetration is printed apart;
   max T        the largest temperature at that time, K;
   max speed    the largest particle speed at that time, m/s;
 both over the bed (particles with at least 3 others within 1.5 dx) and over
@@ -54,6 +59,7 @@ def main():
     parser.add_argument("--surface", type=float, default=0.0)
     parser.add_argument("--solidus", type=float, default=1673.0)
     parser.add_argument("--liquidus", type=float, default=1773.0)
+    parser.add_argument("--end-margin", type=float, default=50e-6)
     args = parser.parse_args()
     paths = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
     if not paths:
@@ -65,14 +71,17 @@ def main():
             times.append(float(f.attrs["time"]))
     now = snapshot(paths[int(np.argmin(np.abs(np.array(times) - args.time)))])
     up = first["dim"] - 1
-    initial = np.full(int(first["id"].max()) + 1, np.nan)
-    initial[first["id"]] = first["position"][:, up]
-    depth = args.surface - initial[now["id"]]  # initial depth below the surface, m
+    initial = np.full((int(first["id"].max()) + 1, first["position"].shape[1]), np.nan)
+    initial[first["id"]] = first["position"]
+    depth = args.surface - initial[now["id"], up]  # initial depth below the surface, m
     fixed = now["kind"] != 1  # not wall
+    substrate_x = first["position"][(first["kind"] != 1) & (first["position"][:, up] < args.surface), 0]
+    x = initial[now["id"], 0]
+    at_ends = (x < substrate_x.min() + args.end_margin) | (x > substrate_x.max() - args.end_margin)
     peak = now["peak_temperature"]
 
-    def penetration(threshold):
-        melted = fixed & (depth > 0) & (peak >= threshold)
+    def penetration(threshold, where):
+        melted = fixed & where & (depth > 0) & (peak >= threshold)
         return 1e6 * depth[melted].max() if melted.any() else 0.0
 
     speed = np.linalg.norm(now["velocity"], axis=1)
@@ -82,8 +91,10 @@ def main():
         return values[where].max() if where.any() else float("nan")
 
     print(f"t = {now['time'] * 1e3:.4f} ms ({os.path.basename(paths[times.index(now['time'])])}): "
-          f"penetration {penetration(args.solidus):.1f} um (solidus), {penetration(args.liquidus):.1f} um "
-          f"(liquidus); bed: max T {largest(now['temperature'], bed):.0f} K, max speed "
+          f"penetration {penetration(args.solidus, ~at_ends):.1f} um (solidus), "
+          f"{penetration(args.liquidus, ~at_ends):.1f} um (liquidus), at the ends (within "
+          f"{args.end_margin * 1e6:.0f} um) {penetration(args.solidus, at_ends):.1f} um (solidus); "
+          f"bed: max T {largest(now['temperature'], bed):.0f} K, max speed "
           f"{largest(speed, bed):.2f} m/s; {int((~bed).sum())} spatter particles: max T "
           f"{largest(now['temperature'], ~bed):.0f} K, max speed {largest(speed, ~bed):.2f} m/s; "
           f"{int((now['liquid_fraction'] > 0.5).sum())} particles over half liquid")
