@@ -216,12 +216,12 @@ def settings(speed, dim, gas):
     closing = 2 * max(speed, capillary)
     barrier = 0.25 * BINDER * dx ** dim * closing ** 2 / (0.125 * dx) ** 2
     # Its reach r_b: dx/2, and 0.7 dx in the gas at 50 m/s. There a gas pair
-    # (reduced mass 1/200 of a binder pair's) came at each other at about
+    # (reduced mass 1/100 of a binder pair's) came at each other at about
     # 1760 m/s, sucked into a pocket opening between grains under -15 MPa,
     # and closed to 0.285 dx at 1.76 us; from 0.7 dx to the guard's 0.3 dx
     # the same k_b stops such a pair closing at g sqrt(k_b / mu) = 2260 m/s
-    # (1130 from dx/2), with the step unchanged. Fewer than 8 of the 11131
-    # gas particles lie within 0.7 dx of another in a snapshot.
+    # (1130 from dx/2), with the step unchanged. At most 9 of the 11131 gas
+    # particles lie within 0.7 dx of another in a snapshot of those runs.
     reach = 0.7 if gas and speed >= 50 else 0.5
     end, output = (GAS_RUN if gas else RUN)[dim, speed]
     values = {"SPEED": f"{speed:g}", "VELOCITY": f"{-speed:g}", "SOUND": f"{sound_shown:g}",

@@ -2,7 +2,7 @@
 """Russell's track metrics (2018 Table 5.3) from the snapshots of a run.
 
     tools/track_metrics.py OUTDIR [--time 0.26e-3] [--surface 0] [--solidus 1673] [--liquidus 1773]
-                           [--end-margin 50e-6]
+                           [--end-margin 50e-6] [--csv FILE]
 
 At the snapshot nearest --time (Russell: 0.26 ms, mid-lasering):
   penetration  the deepest initial position, below the substrate's initial
@@ -60,6 +60,7 @@ def main():
     parser.add_argument("--solidus", type=float, default=1673.0)
     parser.add_argument("--liquidus", type=float, default=1773.0)
     parser.add_argument("--end-margin", type=float, default=50e-6)
+    parser.add_argument("--csv", help="write the readings as one row of a table as well")
     args = parser.parse_args()
     paths = sorted(glob.glob(os.path.join(args.outdir, "snap_*.h5")))
     if not paths:
@@ -90,14 +91,22 @@ def main():
     def largest(values, where):
         return values[where].max() if where.any() else float("nan")
 
-    print(f"t = {now['time'] * 1e3:.4f} ms ({os.path.basename(paths[times.index(now['time'])])}): "
-          f"penetration {penetration(args.solidus, ~at_ends):.1f} um (solidus), "
-          f"{penetration(args.liquidus, ~at_ends):.1f} um (liquidus), at the ends (within "
-          f"{args.end_margin * 1e6:.0f} um) {penetration(args.solidus, at_ends):.1f} um (solidus); "
-          f"bed: max T {largest(now['temperature'], bed):.0f} K, max speed "
-          f"{largest(speed, bed):.2f} m/s; {int((~bed).sum())} spatter particles: max T "
-          f"{largest(now['temperature'], ~bed):.0f} K, max speed {largest(speed, ~bed):.2f} m/s; "
-          f"{int((now['liquid_fraction'] > 0.5).sum())} particles over half liquid")
+    reading = {"time_ms": now["time"] * 1e3, "penetration_solidus_um": penetration(args.solidus, ~at_ends),
+               "penetration_liquidus_um": penetration(args.liquidus, ~at_ends),
+               "penetration_ends_um": penetration(args.solidus, at_ends),
+               "bed_max_temperature_K": largest(now["temperature"], bed), "bed_max_speed": largest(speed, bed),
+               "spatter": int((~bed).sum()), "spatter_max_temperature_K": largest(now["temperature"], ~bed),
+               "spatter_max_speed": largest(speed, ~bed),
+               "over_half_liquid": int((now["liquid_fraction"] > 0.5).sum())}
+    print(f"t = {reading['time_ms']:.4f} ms ({os.path.basename(paths[times.index(now['time'])])}): "
+          f"penetration {reading['penetration_solidus_um']:.1f} um (solidus), "
+          f"{reading['penetration_liquidus_um']:.1f} um (liquidus), at the ends (within "
+          f"{args.end_margin * 1e6:.0f} um) {reading['penetration_ends_um']:.1f} um (solidus); "
+          f"bed: max T {reading['bed_max_temperature_K']:.0f} K, max speed "
+          f"{reading['bed_max_speed']:.2f} m/s; {reading['spatter']} spatter particles: max T "
+          f"{reading['spatter_max_temperature_K']:.0f} K, max speed {reading['spatter_max_speed']:.2f} m/s; "
+          f"{reading['over_half_liquid']} particles over half liquid")
+    write_csv(args.csv, [",".join(reading), ",".join(f"{v:g}" for v in reading.values())])
 
 
 if __name__ == "__main__":
