@@ -144,14 +144,17 @@ GAS_NOTE = """
 # what a gas case's header adds about its own run
 GAS_RESULTS = {
     (2, 1): ("\n# At 1 m/s: 3.5e-10 s, 0.1 ms in 287500 steps, 69 min on 2 cores. The"
-             "\n# droplet soaks into the bed as without the gas, to 2.4 um above the"
-             "\n# substrate, and loosens it under itself from 0.636 to 0.360. In flight it"
-             "\n# slows more than the drag case of this gas explains (docs/RESULTS.md)."),
-    (2, 10): ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores. The"
-              "\n# gas's pressure (1st to 99th percentile) stays between -13 and 27 kPa. The"
-              "\n# droplet soaks into the bed (its lowest particle 4.9 um above the"
-              "\n# substrate at 0.04 ms) and loosens it, from 0.636 to 0.434 under the"
-              "\n# droplet, less than without the gas (0.385; docs/RESULTS.md)."),
+             "\n# droplet soaks into the bed as without the gas, to 2.4 to 4.1 um above"
+             "\n# the substrate, and loosens it under itself from 0.636 to 0.36 to 0.45"
+             "\n# (2026-12-05 and -07). Its bottom starts 20 um above the bed, and the"
+             "\n# gas film it closes slows it before it lands (docs/RESULTS.md)."),
+    (2, 10): ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores"
+              "\n# (47 min on one, 2026-12-07). The gas's pressure (1st to 99th"
+              "\n# percentile) stays between -12 and 31 kPa. The droplet soaks into the"
+              "\n# bed (its lowest particle 4.0 to 4.7 um above the substrate at 0.04 ms)"
+              "\n# and loosens it, from 0.636 to 0.41 under the droplet, less than"
+              "\n# without the gas (0.385; docs/RESULTS.md, BENCHMARKS.md \"The 10 and 1"
+              "\n# m/s binder scenes with the gas on the current build\")."),
     (2, 50): ("\n# At 50 m/s: 1.1e-10 s, the splash's first 10 us in 91060 steps, 62 min on"
               "\n# one core beside another run (20 min on 2 cores, 2026-12-05). The sheets"
               "\n# reach the side walls at 3.5 us and the lid at 5.5 us, and the bed under"
