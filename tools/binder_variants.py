@@ -149,7 +149,7 @@ GAS_RESULTS = {
              "\n# (2026-12-05 and -07). Its bottom starts 20 um above the bed, and the"
              "\n# gas film it closes slows it before it lands (docs/RESULTS.md)."),
     (2, 10): ("\n# At 10 m/s: 3.5e-10 s, 0.04 ms in 115000 steps, 25 min on 2 cores"
-              "\n# (47 min on one, 2026-12-07). The gas's pressure (1st to 99th"
+              "\n# (47 to 67 min on one beside other runs, 2026-12-07). The gas's pressure (1st to 99th"
               "\n# percentile) stays between -12 and 31 kPa. The droplet soaks into the"
               "\n# bed (its lowest particle 4.0 to 4.7 um above the substrate at 0.04 ms)"
               "\n# and loosens it, from 0.636 to 0.41 under the droplet, less than"
